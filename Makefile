@@ -1,0 +1,25 @@
+# The two commands of the quick start; each sets up .venv itself.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: demo test bench clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[plot,test]"
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(PY) -m tdp plan tdp/maps/arena.map --start 7 1 --goal 46 47 --neighbourhood 8 --out demo-output
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+bench: $(STAMP)
+	$(PY) -m benchmarks.kernel
+
+clean:
+	rm -rf $(VENV) demo-output benchmarks/results
