@@ -1,0 +1,314 @@
+"""GridMap and the map loaders: MovingAI ``.map``/``.scen``, ROS map_server ``.yaml`` + image, plain images.
+
+Conventions (DESIGN 3): cells are ``(row, col)`` with row 0 the top row of the file or image; MovingAI's
+``(x, y)`` is ``(col, row)``. ROS's origin is the pose of the lower-left pixel, so :meth:`GridMap.world_to_cell`
+and :meth:`GridMap.cell_to_world` flip the rows. Occupancy is a bool array, True = obstacle.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+import yaml
+from PIL import Image, UnidentifiedImageError
+
+IMAGE_SUFFIXES = (".png", ".pgm", ".ppm", ".pbm", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
+ROS_MODES = ("trinary", "scale", "raw")
+
+
+class GridMap:
+    """An occupancy grid: ``occupied`` bool (H, W), True = obstacle; ``resolution`` in metres per cell;
+    ``origin`` the (x, y, yaw) pose in metres and radians of the lower-left cell's outer corner (ROS convention).
+    """
+
+    def __init__(self, occupied: np.ndarray, resolution: float = 1.0, origin: tuple[float, ...] = (0.0, 0.0)):
+        occupied = np.asarray(occupied)
+        if occupied.ndim != 2 or occupied.shape[0] < 1 or occupied.shape[1] < 1:
+            raise ValueError(f"occupied must be a non-empty 2-D array, got shape {occupied.shape}")
+        if occupied.dtype != bool:
+            raise ValueError(f"occupied must be a bool array (True = obstacle), got dtype {occupied.dtype}")
+        if not (isinstance(resolution, (int, float)) and math.isfinite(resolution) and resolution > 0):
+            raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+        origin = tuple(float(v) for v in origin)
+        if len(origin) not in (2, 3) or not all(math.isfinite(v) for v in origin):
+            raise ValueError(f"origin must be finite (x, y) or (x, y, yaw), got {origin!r}")
+        self._occupied = occupied.copy()
+        self._occupied.flags.writeable = False
+        self.resolution = float(resolution)
+        self.origin = origin if len(origin) == 3 else origin + (0.0,)
+
+    @property
+    def occupied(self) -> np.ndarray:
+        """Read-only bool (H, W) array, True = obstacle."""
+        return self._occupied
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(rows, cols)."""
+        return self._occupied.shape
+
+    def __repr__(self) -> str:
+        return (f"GridMap(shape={self.shape}, obstacles={int(self._occupied.sum())}, "
+                f"resolution={self.resolution}, origin={self.origin})")
+
+    def inflate(self, radius_cells: float) -> GridMap:
+        """A new map whose obstacles grow by a disk: a cell is occupied if an obstacle's centre lies within
+        ``radius_cells`` (Euclidean, in cells) of its centre."""
+        if not (isinstance(radius_cells, (int, float)) and math.isfinite(radius_cells) and radius_cells >= 0):
+            raise ValueError(f"radius_cells must be a finite number >= 0, got {radius_cells!r}")
+        reach = int(math.floor(radius_cells))
+        rows, cols = self.shape
+        padded = np.zeros((rows + 2 * reach, cols + 2 * reach), bool)
+        padded[reach:reach + rows, reach:reach + cols] = self._occupied
+        grown = np.zeros_like(self._occupied)
+        for dr in range(-reach, reach + 1):
+            for dc in range(-reach, reach + 1):
+                if dr * dr + dc * dc <= radius_cells * radius_cells:
+                    grown |= padded[reach + dr:reach + dr + rows, reach + dc:reach + dc + cols]
+        return GridMap(grown, self.resolution, self.origin)
+
+    def contains(self, cell: tuple[int, int]) -> bool:
+        """Whether ``cell`` lies inside the map."""
+        return 0 <= cell[0] < self.shape[0] and 0 <= cell[1] < self.shape[1]
+
+    def check_free_cell(self, cell, name: str) -> tuple[int, int]:
+        """Return ``cell`` as a (row, col) tuple of ints if it is inside the map and free, else raise ValueError."""
+        try:
+            row, col = (int(v) for v in cell)
+            if (row, col) != tuple(cell):
+                raise TypeError
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be a (row, col) pair of integers, got {cell!r}") from None
+        if not self.contains((row, col)):
+            raise ValueError(f"{name} {(row, col)} is outside the {self.shape[0]} x {self.shape[1]} map")
+        if self._occupied[row, col]:
+            raise ValueError(f"{name} {(row, col)} is on an obstacle")
+        return row, col
+
+    def world_to_cell(self, x: float, y: float) -> tuple[int, int]:
+        """The (row, col) of the cell containing world point (x, y) in metres (may lie outside the map)."""
+        ox, oy, yaw = self.origin
+        dx, dy = x - ox, y - oy
+        u = math.cos(yaw) * dx + math.sin(yaw) * dy
+        v = -math.sin(yaw) * dx + math.cos(yaw) * dy
+        col = math.floor(u / self.resolution)
+        row_from_bottom = math.floor(v / self.resolution)
+        return self.shape[0] - 1 - row_from_bottom, col
+
+    def cell_to_world(self, row: float, col: float) -> tuple[float, float]:
+        """World (x, y) in metres of the centre of cell (row, col)."""
+        ox, oy, yaw = self.origin
+        u = (col + 0.5) * self.resolution
+        v = (self.shape[0] - 1 - row + 0.5) * self.resolution
+        return ox + math.cos(yaw) * u - math.sin(yaw) * v, oy + math.sin(yaw) * u + math.cos(yaw) * v
+
+
+class Problem(NamedTuple):
+    """One line of a MovingAI ``.scen``: start and goal cells (row, col) and the published optimal length."""
+
+    start: tuple[int, int]
+    goal: tuple[int, int]
+    optimal_length: float
+
+
+# --------------------------------------------------------------------------------------------------------- loading
+def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: float = 0.5) -> GridMap:
+    """Load a MovingAI ``.map``, a ROS map_server ``.yaml`` or an image, chosen by the file's suffix.
+
+    ``unknown_is_free`` applies to ROS maps (unknown cells are obstacles by default); ``threshold`` to plain
+    images (a pixel darker than ``threshold`` of full brightness is an obstacle).
+    """
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if not path.is_file():
+        raise FileNotFoundError(f"map file not found: {path}")
+    if suffix == ".map":
+        return _load_movingai(path)
+    if suffix in (".yaml", ".yml"):
+        return _load_ros(path, unknown_is_free)
+    if suffix in IMAGE_SUFFIXES:
+        return _load_image(path, threshold)
+    raise ValueError(f"{path}: unknown map format {suffix!r}; expected .map, .yaml or an image "
+                     f"({', '.join(IMAGE_SUFFIXES)})")
+
+
+def _read_lines(path: Path) -> list[str]:
+    try:
+        return path.read_text(encoding="ascii").splitlines()
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{path}: not an ASCII text file ({error.reason} at byte {error.start})") from None
+
+
+def _header_value(path: Path, lines: list[str], index: int, key: str) -> str:
+    if index >= len(lines):
+        raise ValueError(f"{path}: truncated header, expected '{key} ...' on line {index + 1}")
+    parts = lines[index].split()
+    if not parts or parts[0] != key:
+        raise ValueError(f"{path}, line {index + 1}: expected '{key} ...', got {lines[index]!r}")
+    return " ".join(parts[1:])
+
+
+def _positive_int(path: Path, line: int, key: str, text: str) -> int:
+    if not text.isdigit() or int(text) < 1:
+        raise ValueError(f"{path}, line {line}: {key} must be a positive integer, got {text!r}")
+    return int(text)
+
+
+def _load_movingai(path: Path) -> GridMap:
+    """MovingAI ``.map``: '.' and 'G' passable, every other character blocked."""
+    lines = _read_lines(path)
+    _header_value(path, lines, 0, "type")
+    height = _positive_int(path, 2, "height", _header_value(path, lines, 1, "height"))
+    width = _positive_int(path, 3, "width", _header_value(path, lines, 2, "width"))
+    if _header_value(path, lines, 3, "map") != "":
+        raise ValueError(f"{path}, line 4: expected 'map', got {lines[3]!r}")
+    rows = lines[4:4 + height]
+    if len(rows) < height:
+        raise ValueError(f"{path}: truncated, header says height {height} but only {len(rows)} rows follow")
+    for number, row in enumerate(rows, start=5):
+        if len(row) != width:
+            raise ValueError(f"{path}, line {number}: row has {len(row)} cells, header says width {width}")
+    if any(line.strip() for line in lines[4 + height:]):
+        raise ValueError(f"{path}: more than the {height} rows the header announces")
+    chars = np.array([list(row) for row in rows])
+    return GridMap(~np.isin(chars, [".", "G"]))
+
+
+def load_scenarios(path: str | Path, grid: GridMap | None = None) -> list[Problem]:
+    """Read a MovingAI ``.scen`` file into a list of :class:`Problem` (start and goal as (row, col)).
+
+    Tolerates CRLF, a missing final newline, and blank lines with any text after them (reading stops at the first
+    blank line). With ``grid``, checks that each problem's map size matches and its cells are free.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"scenario file not found: {path}")
+    lines = _read_lines(path)
+    if not lines or not lines[0].startswith("version"):
+        raise ValueError(f"{path}, line 1: expected a 'version ...' header")
+    problems = []
+    for number, line in enumerate(lines[1:], start=2):
+        if not line.strip():
+            break
+        problems.append(_scenario_row(path, number, line, grid))
+    return problems
+
+
+def _scenario_row(path: Path, number: int, line: str, grid: GridMap | None) -> Problem:
+    fields = line.split("\t")
+    if len(fields) != 9:
+        raise ValueError(f"{path}, line {number}: expected 9 tab-separated fields, got {len(fields)}")
+    try:
+        width, height, sx, sy, gx, gy = (int(v) for v in fields[2:8])
+        optimal = float(fields[8])
+    except ValueError:
+        raise ValueError(f"{path}, line {number}: fields 3-8 must be integers and field 9 a number") from None
+    start, goal = (sy, sx), (gy, gx)
+    if grid is not None:
+        if (height, width) != grid.shape:
+            raise ValueError(f"{path}, line {number}: map size {width} x {height} (w x h) does not match the map "
+                             f"({grid.shape[1]} x {grid.shape[0]})")
+        grid.check_free_cell(start, f"{path}, line {number}: start")
+        grid.check_free_cell(goal, f"{path}, line {number}: goal")
+    return Problem(start, goal, optimal)
+
+
+def _load_image(path: Path, threshold: float) -> GridMap:
+    """A plain image: a pixel whose brightness is below ``threshold`` (0-1) is an obstacle."""
+    if not (isinstance(threshold, (int, float)) and 0 < threshold <= 1):
+        raise ValueError(f"threshold must be in (0, 1], got {threshold!r}")
+    shade, _ = _read_shade(path, with_alpha=False)
+    return GridMap(shade < threshold)
+
+
+def _read_shade(path: Path, with_alpha: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """Brightness in [0, 1] averaged over the colour channels (and alpha when ``with_alpha``, as map_server's
+    trinary mode does), plus the alpha channel in [0, 1] if the image has one."""
+    try:
+        with Image.open(path) as image:
+            image.load()
+            has_alpha = image.mode in ("RGBA", "LA", "PA") or "transparency" in image.info
+            rgba = np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
+    except FileNotFoundError:
+        raise FileNotFoundError(f"image file not found: {path}") from None
+    except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as error:
+        raise ValueError(f"{path}: cannot read image ({error})") from None
+    channels = rgba if (with_alpha and has_alpha) else rgba[..., :3]
+    return channels.mean(axis=2), (rgba[..., 3] if has_alpha else None)
+
+
+def _load_ros(path: Path, unknown_is_free: bool) -> GridMap:
+    """ROS map_server YAML + image, following nav2's map_io: trinary, scale and raw modes, ``negate``."""
+    meta = _read_ros_yaml(path)
+    image_path = Path(meta["image"])
+    if not image_path.is_absolute():
+        image_path = path.parent / image_path
+    if not image_path.is_file():
+        raise FileNotFoundError(f"{path}: image {meta['image']!r} not found (looked at {image_path})")
+    values = ros_occupancy(image_path, meta["mode"], meta["negate"], meta["occupied_thresh"], meta["free_thresh"])
+    occupied = values == 100
+    unknown = values < 0
+    if meta["mode"] == "scale":
+        unknown |= (values > 0) & (values < 100)
+    if meta["mode"] == "raw":
+        occupied = values > 100 * meta["occupied_thresh"]
+        unknown |= ~occupied & (values >= 100 * meta["free_thresh"])
+    if not unknown_is_free:
+        occupied = occupied | unknown
+    return GridMap(occupied, meta["resolution"], meta["origin"])
+
+
+def _read_ros_yaml(path: Path) -> dict:
+    try:
+        meta = yaml.safe_load(path.read_text())
+    except (yaml.YAMLError, UnicodeDecodeError) as error:
+        raise ValueError(f"{path}: not valid YAML ({error})") from None
+    if not isinstance(meta, dict):
+        raise ValueError(f"{path}: expected a YAML mapping with image, resolution, origin, ...")
+    for key in ("image", "resolution", "origin", "occupied_thresh", "free_thresh"):
+        if key not in meta:
+            raise ValueError(f"{path}: missing key {key!r}")
+    if not isinstance(meta["image"], str) or not meta["image"]:
+        raise ValueError(f"{path}: 'image' must be a file name, got {meta['image']!r}")
+    number = (int, float)
+    resolution = meta["resolution"]
+    if not isinstance(resolution, number) or isinstance(resolution, bool) or not resolution > 0:
+        raise ValueError(f"{path}: 'resolution' must be a positive number, got {resolution!r}")
+    origin = meta["origin"]
+    if not (isinstance(origin, list) and len(origin) == 3 and all(isinstance(v, number) for v in origin)):
+        raise ValueError(f"{path}: 'origin' must be [x, y, yaw], got {origin!r}")
+    occ, free = meta["occupied_thresh"], meta["free_thresh"]
+    if not all(isinstance(v, number) for v in (occ, free)) or not 0 <= free < occ <= 1:
+        raise ValueError(f"{path}: need 0 <= free_thresh < occupied_thresh <= 1, got {free!r} and {occ!r}")
+    mode = meta.get("mode", "trinary")
+    if mode not in ROS_MODES:
+        raise ValueError(f"{path}: unknown mode {mode!r}; expected one of {ROS_MODES}")
+    negate = meta.get("negate", 0)
+    if negate not in (0, 1, True, False):
+        raise ValueError(f"{path}: 'negate' must be 0 or 1, got {negate!r}")
+    return {"image": meta["image"], "resolution": float(resolution), "origin": tuple(float(v) for v in origin),
+            "occupied_thresh": float(occ), "free_thresh": float(free), "mode": mode, "negate": bool(negate)}
+
+
+def ros_occupancy(image_path: Path, mode: str, negate: bool, occupied_thresh: float,
+                  free_thresh: float) -> np.ndarray:
+    """The int8 occupancy values (0 free, 100 occupied, -1 unknown; 1-99 in scale and raw modes) that nav2's
+    map_server computes from an image, rows top-first as in the image."""
+    shade, alpha = _read_shade(image_path, with_alpha=(mode == "trinary"))
+    occ = shade if negate else 1.0 - shade
+    values = np.full(shade.shape, -1, np.int16)
+    if mode == "raw":
+        percent = np.round(shade * 255)
+        inside = percent <= 100
+        values[inside] = percent[inside]
+        return values.astype(np.int8)
+    values[occ > occupied_thresh] = 100
+    values[occ < free_thresh] = 0
+    if mode == "scale":
+        band = (occ >= free_thresh) & (occ <= occupied_thresh)
+        values[band] = np.rint((occ[band] - free_thresh) / (occupied_thresh - free_thresh) * 100)
+        if alpha is not None:
+            values[alpha < 1.0] = -1
+    return values.astype(np.int8)

@@ -1,0 +1,19 @@
+from pathlib import Path
+
+import pytest
+
+DATA = Path(__file__).parent / "data"
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"
+
+
+@pytest.fixture
+def data_dir() -> Path:
+    return DATA
+
+
+def shared_file(*parts: str) -> Path:
+    """A file of ../shared/data, skipping the test when the checkout has no shared/ beside it."""
+    path = SHARED.joinpath(*parts)
+    if not path.exists():
+        pytest.skip(f"{path} not present (large third-party data lives in ../shared/data)")
+    return path
