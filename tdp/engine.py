@@ -1,0 +1,441 @@
+"""Taichi fields and kernels of the DP: every layer relaxed in parallel on the CPU threads (paper eqs. 5-7, 10-12).
+
+The only module of tdp that imports taichi. Layout (DESIGN 4):
+
+* the goal layer is one (H + 4) x (W + 4) float32 array, two cells of padding on each side;
+* node layers are windows of side 2r + 1 around their nodes, r = ceil(cap); ``LANES`` of them are packed per cell
+  as a ``ti.types.vector`` so that one relaxation updates them all with SIMD. Group g, lane l is node g*LANES + l;
+  unused lanes are walled in and stay at the cap;
+* obstacles are a penalty array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's
+  candidate is ``D[Z] + |V - Z| + pen[Z] + pen[crossed cells]``, inf when any of them is blocked.
+
+All kernels take ndarrays, so a kernel compiles once per (neighbourhood, corner rule, layer kind) and not once per
+map. Kernels must live in a ``.py`` file: Taichi reads their source.
+"""
+import math
+import os
+
+import numpy as np
+import taichi as ti
+
+from . import stencil
+
+#: Node layers packed per cell; 16 float32 fill one AVX-512 register (two AVX2 registers).
+LANES = 16
+#: Padding around every array: the stencil's reach, so kernels never test bounds.
+PAD = stencil.REACH
+_FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
+
+_initialised = False
+
+
+def init_taichi() -> None:
+    """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2)."""
+    global _initialised
+    if _initialised:
+        return
+    arch_name = os.environ.get("TDP_ARCH", "cpu")
+    arch = getattr(ti, arch_name, None)
+    if arch is None:
+        raise ValueError(f"TDP_ARCH must name a Taichi arch such as cpu or cuda, got {arch_name!r}")
+    threads = os.environ.get("TDP_THREADS", "2")
+    if not threads.isdigit() or int(threads) < 1:
+        raise ValueError(f"TDP_THREADS must be a positive integer, got {threads!r}")
+    ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN)
+    _initialised = True
+
+
+# --------------------------------------------------------------------------------------------------- helpers (ti.func)
+@ti.func
+def _broadcast(value, lanes: ti.template()):
+    """``value`` as a scalar (lanes == 0) or as a vector of ``lanes`` copies."""
+    if ti.static(lanes == 0):
+        return value
+    else:
+        return ti.Vector.zero(ti.f32, lanes) + value
+
+
+@ti.func
+def _lane(value, lane, lanes: ti.template()):
+    """Component ``lane`` of a packed value (the value itself for a scalar layer)."""
+    out = 0.0
+    if ti.static(lanes == 0):
+        out = value
+    else:
+        for k in ti.static(range(lanes)):
+            if lane == k:
+                out = value[k]
+    return out
+
+
+@ti.func
+def _differs(a, b, lanes: ti.template()):
+    result = 0
+    if ti.static(lanes == 0):
+        result = ti.i32(a != b)
+    else:
+        result = ti.i32((a != b).any())
+    return result
+
+
+@ti.func
+def _best_candidate(src: ti.template(), pen: ti.template(), g, i, j, cap, lanes: ti.template(),
+                    neighbourhood: ti.template(), corner_cutting: ti.template()):
+    """min(cap, min over allowed moves of D[Z] + |V - Z|): the last case of eqs. 5 and 10."""
+    best = _broadcast(cap, lanes)
+    for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
+        cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost) + pen[g, i + m.dr, j + m.dc]
+        for c in ti.static(m.crossed):
+            cand += pen[g, i + c[0], j + c[1]]
+        best = ti.min(best, cand)
+    return best
+
+
+@ti.func
+def _updated(src: ti.template(), pen: ti.template(), g, i, j, sr, sc, cap, lanes: ti.template(),
+             neighbourhood: ti.template(), corner_cutting: ti.template()):
+    """The new value of cell (i, j) (padded coordinates): eqs. 5 and 10, obstacles before the source."""
+    blocked = pen[g, i, j] > 0
+    value = _best_candidate(src, pen, g, i, j, cap, lanes, neighbourhood, corner_cutting)
+    if i == sr and j == sc:
+        value = _broadcast(0.0, lanes)
+    return ti.select(blocked, _broadcast(cap, lanes), value)
+
+
+# ----------------------------------------------------------------------------------------------------------- kernels
+@ti.kernel
+def _relax(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
+           sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
+           corner_cutting: ti.template()) -> ti.i32:
+    """One synchronous (Jacobi) iteration src -> dst of every layer in the arrays; returns the changed cells."""
+    changed = 0
+    for g, i, j in ti.ndrange(src.shape[0], (PAD, src.shape[1] - PAD), (PAD, src.shape[2] - PAD)):
+        new = _updated(src, pen, g, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+        changed += _differs(new, src[g, i, j], lanes)
+        dst[g, i, j] = new
+    return changed
+
+
+@ti.kernel
+def _sweep(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), sr: ti.i32, sc: ti.i32, cap: ti.f32,
+           flip_rows: ti.i32, flip_cols: ti.i32, lanes: ti.template(), neighbourhood: ti.template(),
+           corner_cutting: ti.template()) -> ti.i32:
+    """One in-place (asynchronous) sweep in the given row and column order; returns the changed cells.
+
+    Races between threads are benign: every value read is the length of some path to the source in the current
+    map, and values only fall from the initial caps, so the sweeps reach the unique fixed point of eq. 5.
+    """
+    changed = 0
+    rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
+    for g, a, b in ti.ndrange(arr.shape[0], rows, cols):
+        i = PAD + (rows - 1 - a if flip_rows else a)
+        j = PAD + (cols - 1 - b if flip_cols else b)
+        new = _updated(arr, pen, g, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+        if _differs(new, arr[g, i, j], lanes):
+            changed += 1
+            arr[g, i, j] = new
+    return changed
+
+
+@ti.kernel
+def _reset(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), sr: ti.i32, sc: ti.i32, cap: ti.f32,
+           lanes: ti.template()):
+    """The initial state of eqs. 5 and 10: 0 at a free source, the cap everywhere else."""
+    for g, i, j in arr:
+        value = _broadcast(cap, lanes)
+        if i == sr and j == sc:
+            value = ti.select(pen[g, i, j] > 0, value, _broadcast(0.0, lanes))
+        arr[g, i, j] = value
+
+
+@ti.kernel
+def _gather_window_pen(grid_pen: ti.types.ndarray(ndim=3), window_pen: ti.types.ndarray(ndim=3),
+                       origins: ti.types.ndarray(ndim=2), lanes: ti.template()):
+    """Fill each node window's penalties from the grid's (inf outside the grid and in the window's padding)."""
+    rows, cols = grid_pen.shape[1] - 2 * PAD, grid_pen.shape[2] - 2 * PAD
+    side = window_pen.shape[1] - 2 * PAD
+    for g, i, j in window_pen:
+        value = _broadcast(ti.math.inf, lanes)
+        for k in ti.static(range(lanes)):
+            r = origins[g * lanes + k, 0] + i - PAD
+            c = origins[g * lanes + k, 1] + j - PAD
+            inside = PAD <= i < side + PAD and PAD <= j < side + PAD and 0 <= r < rows and 0 <= c < cols
+            if inside:
+                value[k] = grid_pen[0, r + PAD, c + PAD]
+        window_pen[g, i, j] = value
+
+
+@ti.kernel
+def _paint_grid(pen: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1)):
+    for k in range(cells.shape[0]):
+        pen[0, cells[k, 0] + PAD, cells[k, 1] + PAD] = values[k]
+
+
+@ti.kernel
+def _paint_windows(window_pen: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2),
+                   cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1), lanes: ti.template()):
+    """Write changed cells' penalties into every node window that contains them."""
+    side = window_pen.shape[1] - 2 * PAD
+    for k, g in ti.ndrange(cells.shape[0], window_pen.shape[0]):
+        for lane in ti.static(range(lanes)):
+            a = cells[k, 0] - origins[g * lanes + lane, 0]
+            b = cells[k, 1] - origins[g * lanes + lane, 1]
+            if 0 <= a < side and 0 <= b < side:
+                window_pen[g, a + PAD, b + PAD][lane] = values[k]
+
+
+@ti.func
+def _successor_move(arr: ti.template(), pen: ti.template(), g, lane, i, j, sr, sc, cap, lanes: ti.template(),
+                    neighbourhood: ti.template(), corner_cutting: ti.template()):
+    """Index of the argmin move from (i, j) (eqs. 7 and 12), first in tie order; -1 at the source or at the cap."""
+    best = cap
+    found = -1
+    index = 0
+    for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
+        cand = _lane(arr[g, i + m.dr, j + m.dc] + ti.f32(m.cost) + pen[g, i + m.dr, j + m.dc], lane, lanes)
+        for c in ti.static(m.crossed):
+            cand += _lane(pen[g, i + c[0], j + c[1]], lane, lanes)
+        if cand < best:
+            best = cand
+            found = index
+        index += 1
+    if i == sr and j == sc:
+        found = -1
+    return found
+
+
+@ti.kernel
+def _trace(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), g: ti.i32, lane: ti.i32, i0: ti.i32,
+           j0: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, out: ti.types.ndarray(ndim=2), lanes: ti.template(),
+           neighbourhood: ti.template(), corner_cutting: ti.template()) -> ti.i32:
+    """Follow successors from (i0, j0) (padded coordinates) for at most out.shape[0] steps; returns the steps."""
+    i, j, steps = i0, j0, 0
+    ti.loop_config(serialize=True)
+    for _ in range(out.shape[0]):
+        move = -1
+        if PAD <= i < arr.shape[1] - PAD and PAD <= j < arr.shape[2] - PAD:
+            move = _successor_move(arr, pen, g, lane, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+        if move >= 0:
+            for index, m in ti.static(enumerate(stencil.moves(neighbourhood, corner_cutting))):
+                if move == index:
+                    i += m.dr
+                    j += m.dc
+            out[steps, 0] = i
+            out[steps, 1] = j
+            steps += 1
+        else:
+            break
+    return steps
+
+
+@ti.kernel
+def _sample_goal(arr: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2), out: ti.types.ndarray(ndim=2)):
+    for k in range(cells.shape[0]):
+        out[k, 0] = arr[0, cells[k, 0] + PAD, cells[k, 1] + PAD]
+
+
+@ti.kernel
+def _sample_windows(arr: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
+                    cap: ti.f32, out: ti.types.ndarray(ndim=2), lanes: ti.template()):
+    """out[k, 1 + node] = that node's layer at cells[k] (the cap outside its window)."""
+    side = arr.shape[1] - 2 * PAD
+    for k, g in ti.ndrange(cells.shape[0], arr.shape[0]):
+        for lane in ti.static(range(lanes)):
+            node = g * lanes + lane
+            if node < out.shape[1] - 1:
+                a = cells[k, 0] - origins[node, 0]
+                b = cells[k, 1] - origins[node, 1]
+                value = cap
+                if 0 <= a < side and 0 <= b < side:
+                    value = arr[g, a + PAD, b + PAD][lane]
+                out[k, 1 + node] = value
+
+
+# ------------------------------------------------------------------------------------------------------- host class
+class _Layers:
+    """Two buffers (Jacobi) and the penalties of one kind of layer: the goal (scalar) or the node windows (vector)."""
+
+    def __init__(self, groups: int, rows: int, cols: int, lanes: int):
+        init_taichi()
+        self.lanes = lanes
+        shape = (groups, rows + 2 * PAD, cols + 2 * PAD)
+        self.buffers = [self._array(shape), self._array(shape)]
+        self.pen = self._array(shape)
+        self.current = 0
+
+    def _array(self, shape: tuple[int, int, int]):
+        if self.lanes:
+            return ti.Vector.ndarray(self.lanes, ti.f32, shape)
+        return ti.ndarray(ti.f32, shape)
+
+    @property
+    def values(self):
+        return self.buffers[self.current]
+
+    def swap(self) -> None:
+        self.current = 1 - self.current
+
+
+class Engine:
+    """All layers of one DP: the goal layer (cap ``goal_cap``) and one windowed layer per node (cap ``node_cap``).
+
+    Cells are ``(row, col)``; distances are in cells. ``occupied`` is a bool (H, W) array, True = obstacle.
+    Map edits and goal moves take effect at the next iteration; nothing is recompiled.
+    """
+
+    def __init__(self, occupied: np.ndarray, goal: tuple[int, int], *, goal_cap: float = math.inf,
+                 nodes: np.ndarray | None = None, node_cap: float = 0.0, neighbourhood: int = 16,
+                 corner_cutting: bool = False):
+        self.occupied = np.array(occupied, dtype=bool)
+        self.rows, self.cols = self.occupied.shape
+        self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
+        self.corner_cutting = bool(corner_cutting)
+        self.goal = (int(goal[0]), int(goal[1]))
+        self.goal_cap = float(goal_cap)
+        self.node_cap = float(node_cap)
+        self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
+        self.iterations = 0
+
+        self._goal = _Layers(1, self.rows, self.cols, 0)
+        self._goal.pen.from_numpy(self._padded_penalties())
+        self._windows = None
+        if len(self.nodes):
+            self.radius = int(math.ceil(self.node_cap))
+            side = 2 * self.radius + 1
+            groups = -(-len(self.nodes) // LANES)
+            origins = np.full((groups * LANES, 2), _FAR, np.int32)
+            origins[: len(self.nodes)] = self.nodes - self.radius
+            self._origins = ti.ndarray(ti.i32, origins.shape)
+            self._origins.from_numpy(origins)
+            self._windows = _Layers(groups, side, side, LANES)
+            _gather_window_pen(self._goal.pen, self._windows.pen, self._origins, LANES)
+        self.reset()
+
+    # -- state -------------------------------------------------------------------------------------------------
+    def _padded_penalties(self) -> np.ndarray:
+        pen = np.full((1, self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
+        pen[0, PAD:-PAD, PAD:-PAD] = np.where(self.occupied, np.inf, 0.0)
+        return pen
+
+    def _kinds(self):
+        """(layers, source row, source col, cap) of the goal layer and, if any, of the node windows."""
+        yield self._goal, self.goal[0] + PAD, self.goal[1] + PAD, self.goal_cap
+        if self._windows is not None:
+            centre = self.radius + PAD
+            yield self._windows, centre, centre, self.node_cap
+
+    def reset(self) -> None:
+        """Back to the initial state of eqs. 5 and 10 (iteration 0)."""
+        for layers, sr, sc, cap in self._kinds():
+            for buffer in layers.buffers:
+                _reset(buffer, layers.pen, sr, sc, cap, layers.lanes)
+        self.iterations = 0
+
+    def step(self, k: int = 1) -> int:
+        """Run k synchronous iterations of every layer; return the cells changed by the last one."""
+        changed = 0
+        for _ in range(k):
+            changed = 0
+            for layers, sr, sc, cap in self._kinds():
+                changed += _relax(layers.values, layers.buffers[1 - layers.current], layers.pen, sr, sc, cap,
+                                  layers.lanes, self.neighbourhood, self.corner_cutting)
+                layers.swap()
+            self.iterations += 1
+        return changed
+
+    def converge(self, max_sweeps: int | None = None) -> int:
+        """Relax from the initial state to the fixed point with in-place sweeps; return the sweeps made.
+
+        The fixed point of eqs. 5 and 10 is unique, so the result equals what synchronous iterations reach, bit for
+        bit; alternating the sweep direction makes it take far fewer passes.
+        """
+        self.reset()
+        sweeps = 0
+        orders = ((0, 0), (1, 1), (0, 1), (1, 0))
+        while max_sweeps is None or sweeps < max_sweeps:
+            flip_rows, flip_cols = orders[sweeps % 4]
+            changed = 0
+            for layers, sr, sc, cap in self._kinds():
+                changed += _sweep(layers.values, layers.pen, sr, sc, cap, flip_rows, flip_cols, layers.lanes,
+                                  self.neighbourhood, self.corner_cutting)
+            sweeps += 1
+            if changed == 0:
+                break
+        for layers, _, _, _ in self._kinds():
+            layers.buffers[1 - layers.current].copy_from(layers.values)
+        return sweeps
+
+    # -- edits -------------------------------------------------------------------------------------------------
+    def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
+        """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels."""
+        cells = np.asarray(cells, np.int32).reshape(-1, 2)
+        if not len(cells):
+            return
+        occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        self.occupied[cells[:, 0], cells[:, 1]] = occupied
+        cells_nd = ti.ndarray(ti.i32, cells.shape)
+        cells_nd.from_numpy(np.ascontiguousarray(cells))
+        values_nd = ti.ndarray(ti.f32, (len(cells),))
+        values_nd.from_numpy(np.where(occupied, np.inf, 0.0).astype(np.float32))
+        _paint_grid(self._goal.pen, cells_nd, values_nd)
+        if self._windows is not None:
+            _paint_windows(self._windows.pen, self._origins, cells_nd, values_nd, LANES)
+
+    def set_goal(self, goal: tuple[int, int]) -> None:
+        """Move the goal layer's source; the values propagate from it from the next iteration on."""
+        self.goal = (int(goal[0]), int(goal[1]))
+
+    # -- reading -----------------------------------------------------------------------------------------------
+    def goal_distances(self) -> np.ndarray:
+        """The goal layer as a float32 (H, W) array."""
+        return self._goal.values.to_numpy()[0, PAD:-PAD, PAD:-PAD]
+
+    def node_distances(self, node: int) -> np.ndarray:
+        """Node layer ``node`` on the full grid (H, W): its window, the cap outside it."""
+        self._check_node(node)
+        g, lane = divmod(node, LANES)
+        window = self._windows.values.to_numpy()[g, PAD:-PAD, PAD:-PAD, lane]
+        full = np.full((self.rows + 2 * self.radius, self.cols + 2 * self.radius), self.node_cap, np.float32)
+        r, c = self.nodes[node]
+        full[r:r + window.shape[0], c:c + window.shape[1]] = window
+        return full[self.radius:self.radius + self.rows, self.radius:self.radius + self.cols]
+
+    def sample(self, cells: np.ndarray) -> np.ndarray:
+        """Every layer at each of ``cells`` (n, 2): a float32 (n, 1 + nodes) array, column 0 the goal layer."""
+        cells = np.asarray(cells, np.int32).reshape(-1, 2)
+        cells_nd = ti.ndarray(ti.i32, cells.shape)
+        cells_nd.from_numpy(np.ascontiguousarray(cells))
+        out = ti.ndarray(ti.f32, (len(cells), 1 + len(self.nodes)))
+        _sample_goal(self._goal.values, cells_nd, out)
+        if self._windows is not None:
+            _sample_windows(self._windows.values, self._origins, cells_nd, self.node_cap, out, LANES)
+        return out.to_numpy()
+
+    def trace(self, layer: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
+        """Cells visited by following the successors of ``layer`` (0 = goal, 1 + j = node j) from ``start``.
+
+        Stops at the layer's source, at a cell with no successor, or after ``max_steps`` moves; ``start`` itself is
+        not included.
+        """
+        out = ti.ndarray(ti.i32, (max(1, max_steps), 2))
+        if layer == 0:
+            layers, g, lane, sr, sc, cap = self._goal, 0, 0, self.goal[0] + PAD, self.goal[1] + PAD, self.goal_cap
+            origin = (-PAD, -PAD)
+            i, j = start[0] + PAD, start[1] + PAD
+        else:
+            self._check_node(layer - 1)
+            g, lane = divmod(layer - 1, LANES)
+            layers, sr = self._windows, self.radius + PAD
+            sc, cap = sr, self.node_cap
+            origin = tuple(self.nodes[layer - 1] - self.radius - PAD)
+            i, j = start[0] - origin[0], start[1] - origin[1]
+        if max_steps <= 0:
+            return []
+        steps = _trace(layers.values, layers.pen, g, lane, i, j, sr, sc, cap, out, layers.lanes,
+                       self.neighbourhood, self.corner_cutting)
+        path = out.to_numpy()[:steps]
+        return [(int(r + origin[0]), int(c + origin[1])) for r, c in path]
+
+    def _check_node(self, node: int) -> None:
+        if not 0 <= node < len(self.nodes):
+            raise ValueError(f"node index must be in [0, {len(self.nodes)}), got {node}")

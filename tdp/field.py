@@ -1,0 +1,141 @@
+"""DistanceField: the distance-to-goal of every cell, kept by the DP of eqs. 4-7 (a thin face over the engine)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .engine import Engine
+from .grid import GridMap
+
+
+def check_cap(value: float, name: str) -> float:
+    """Return ``value`` as a float if it is a positive number (inf allowed), else raise ValueError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value) or value <= 0:
+        raise ValueError(f"{name} must be a positive number (inf allowed), got {value!r}")
+    return float(value)
+
+
+def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndarray:
+    """An (n, 2) int array of (row, col) cells from a bool mask of the map's shape or a sequence of cells."""
+    array = np.asarray(cells_or_mask)
+    if array.dtype == bool:
+        if array.shape != grid_shape:
+            raise ValueError(f"{name}: a mask must have the map's shape {grid_shape}, got {array.shape}")
+        return np.argwhere(array)
+    if array.size == 0:
+        return np.zeros((0, 2), np.int64)
+    if not np.issubdtype(array.dtype, np.integer) or array.shape[-1] != 2:
+        raise ValueError(f"{name}: expected a bool mask or (row, col) integer cells, got an array of "
+                         f"shape {array.shape} and dtype {array.dtype}")
+    cells = array.reshape(-1, 2)
+    inside = (cells[:, 0] >= 0) & (cells[:, 0] < grid_shape[0]) & (cells[:, 1] >= 0) & (cells[:, 1] < grid_shape[1])
+    if not inside.all():
+        raise ValueError(f"{name}: cell {tuple(int(v) for v in cells[~inside][0])} is outside the "
+                         f"{grid_shape[0]} x {grid_shape[1]} map")
+    return cells
+
+
+class DistanceField:
+    """Distance to ``goal`` (in cells) of every cell of ``grid``, relaxed by synchronous DP iterations.
+
+    ``neighbourhood`` is 4, 8 or 16 (moves of length 1, sqrt 2, sqrt 5); ``corner_cutting=True`` allows the paper's
+    literal moves between any two free cells; ``d_max`` caps every value (eq. 5). The field starts at iteration 0
+    (0 at the goal, ``d_max`` elsewhere): call :meth:`converge` for exact distances, :meth:`step` to advance.
+    Map edits and goal moves take effect at the next iteration.
+    """
+
+    def __init__(self, grid: GridMap, goal: tuple[int, int], neighbourhood: int = 16, corner_cutting: bool = False,
+                 d_max: float = math.inf):
+        if not isinstance(grid, GridMap):
+            raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
+        self._grid = grid
+        goal = grid.check_free_cell(goal, "goal")
+        self.d_max = check_cap(d_max, "d_max")
+        self._engine = Engine(grid.occupied, goal, goal_cap=self.d_max, neighbourhood=neighbourhood,
+                              corner_cutting=corner_cutting)
+
+    @property
+    def goal(self) -> tuple[int, int]:
+        """The goal cell (row, col)."""
+        return self._engine.goal
+
+    @property
+    def iterations(self) -> int:
+        """Synchronous iterations since the initial state (0 after :meth:`converge`'s reset plus its sweeps)."""
+        return self._engine.iterations
+
+    @property
+    def occupied(self) -> np.ndarray:
+        """The current occupancy (bool (H, W), True = obstacle), edits included; a copy."""
+        return self._engine.occupied.copy()
+
+    def step(self, k: int = 1) -> int:
+        """Run ``k`` synchronous DP iterations (eqs. 5-7); return how many cells the last one changed."""
+        if isinstance(k, bool) or not isinstance(k, int) or k < 0:
+            raise ValueError(f"k must be a non-negative integer, got {k!r}")
+        return self._engine.step(k)
+
+    def converge(self, max_iters: int | None = None) -> int:
+        """Relax to the exact fixed point (the setup phase); return the number of sweeps it took.
+
+        Starts again from the initial state and sweeps in place until a sweep changes nothing (DESIGN 4); the
+        result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the sweeps.
+        """
+        if max_iters is not None and (isinstance(max_iters, bool) or not isinstance(max_iters, int) or max_iters < 1):
+            raise ValueError(f"max_iters must be a positive integer or None, got {max_iters!r}")
+        return self._engine.converge(max_iters)
+
+    def distances(self) -> np.ndarray:
+        """float32 (H, W) distances in cells: inf (or ``d_max``) where the goal is not reached."""
+        return self._engine.goal_distances()
+
+    def distance(self, cell: tuple[int, int]) -> float:
+        """Distance of one cell in cells (``d_max`` on an obstacle)."""
+        cell = self._check_cell(cell, "cell")
+        return float(self._engine.sample([cell])[0, 0])
+
+    def successor(self, cell: tuple[int, int]) -> tuple[int, int] | None:
+        """S(V) of eq. 7: the neighbour minimising D(Z) + |V - Z| over the allowed moves, ties in the order
+        straight, diagonal, knight; None at the goal or where every candidate is at ``d_max``."""
+        step = self._engine.trace(0, self._check_cell(cell, "cell"), 1)
+        return step[0] if step else None
+
+    def path(self, start: tuple[int, int]) -> list[tuple[int, int]]:
+        """Cells from ``start`` to the goal following successors; [] if the goal is not reached from ``start``.
+
+        On a converged field the path's length equals ``distance(start)``; on one still relaxing it follows the
+        current successors and may stop short, in which case [] is returned.
+        """
+        start = self._check_free(start, "start")
+        if start == self.goal:
+            return [start]
+        rows, cols = self._grid.shape
+        cells = [start] + self._engine.trace(0, start, rows * cols)
+        return cells if cells[-1] == self.goal else []
+
+    def set_occupied(self, cells_or_mask, occupied: bool = True) -> None:
+        """Mark cells (a bool mask of the map's shape, or (row, col) cells) as obstacles or, with
+        ``occupied=False``, as free. Only cells whose state changes are sent to the engine."""
+        cells = cells_from(self._grid.shape, cells_or_mask, "set_occupied")
+        current = self._engine.occupied[cells[:, 0], cells[:, 1]]
+        self._engine.set_cells(cells[current != bool(occupied)], bool(occupied))
+
+    def set_goal(self, cell: tuple[int, int]) -> None:
+        """Move the goal (a free cell); distances follow over the next iterations."""
+        self._engine.set_goal(self._check_free(cell, "goal"))
+
+    def _check_free(self, cell, name: str) -> tuple[int, int]:
+        cell = self._check_cell(cell, name)
+        if self._engine.occupied[cell]:
+            raise ValueError(f"{name} {cell} is on an obstacle")
+        return cell
+
+    def _check_cell(self, cell, name: str) -> tuple[int, int]:
+        try:
+            row, col = (int(v) for v in cell)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be a (row, col) pair of integers, got {cell!r}") from None
+        if not self._grid.contains((row, col)):
+            raise ValueError(f"{name} {(row, col)} is outside the {self._grid.shape[0]} x {self._grid.shape[1]} map")
+        return row, col

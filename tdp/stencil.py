@@ -1,0 +1,64 @@
+"""Neighbourhoods of the DP (paper eq. 4): moves, their lengths and the cells a move sweeps over.
+
+A move is ``(dr, dc)`` from a cell V to its neighbour Z = V + (dr, dc), in cells. Its cost is its Euclidean
+length (1, sqrt 2 or sqrt 5). ``crossed`` lists the offsets, relative to V, of the cells the move's segment passes
+through besides V and Z; with the default rule (no corner cutting) they must be free for the move to be allowed
+(DESIGN 4). The order of :func:`moves` is the fixed tie order of successors: straight, diagonal, knight.
+"""
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+NEIGHBOURHOODS = (4, 8, 16)
+
+_STRAIGHT = ((-1, 0), (0, 1), (1, 0), (0, -1))
+_DIAGONAL = ((-1, 1), (1, 1), (1, -1), (-1, -1))
+_KNIGHT = ((-1, 2), (1, 2), (2, 1), (2, -1), (1, -2), (-1, -2), (-2, -1), (-2, 1))
+
+#: Largest |dr| or |dc| of any move: the padding, in cells, that the engine keeps around each array.
+REACH = 2
+
+
+class Move(NamedTuple):
+    """One move of the stencil: offset (dr, dc) in cells, its length, and the cells it crosses."""
+
+    dr: int
+    dc: int
+    cost: float
+    crossed: tuple[tuple[int, int], ...]
+
+
+def _sign(x: int) -> int:
+    return (x > 0) - (x < 0)
+
+
+def _crossed_cells(dr: int, dc: int) -> tuple[tuple[int, int], ...]:
+    """Cells (offsets from V) that the segment from V to V + (dr, dc) passes through (DESIGN 4)."""
+    sr, sc = _sign(dr), _sign(dc)
+    if abs(dr) + abs(dc) == 1:
+        return ()
+    if abs(dr) == 1 and abs(dc) == 1:
+        return ((dr, 0), (0, dc))
+    if abs(dc) == 2:
+        return ((0, sc), (dr, sc))
+    return ((sr, 0), (sr, dc))
+
+
+def check_neighbourhood(neighbourhood: int) -> int:
+    """Return ``neighbourhood`` if it is 4, 8 or 16, else raise ValueError naming it."""
+    if isinstance(neighbourhood, bool) or neighbourhood not in NEIGHBOURHOODS:
+        raise ValueError(f"neighbourhood must be one of {NEIGHBOURHOODS}, got {neighbourhood!r}")
+    return int(neighbourhood)
+
+
+def moves(neighbourhood: int = 16, corner_cutting: bool = False) -> tuple[Move, ...]:
+    """The moves of a 4-, 8- or 16-neighbourhood in tie order (straight, diagonal, knight).
+
+    With ``corner_cutting=True`` no move needs its crossed cells free (the paper's literal eq. 4).
+    """
+    offsets = {4: _STRAIGHT, 8: _STRAIGHT + _DIAGONAL, 16: _STRAIGHT + _DIAGONAL + _KNIGHT}
+    return tuple(
+        Move(dr, dc, math.hypot(dr, dc), () if corner_cutting else _crossed_cells(dr, dc))
+        for dr, dc in offsets[check_neighbourhood(neighbourhood)]
+    )

@@ -1,0 +1,74 @@
+"""The engine's windowed node layers against full-grid layers, cell for cell, through map changes."""
+import math
+
+import numpy as np
+import pytest
+
+from tdp.engine import LANES, Engine
+
+
+def random_map(rows, cols, density, seed):
+    return np.random.default_rng(seed).random((rows, cols)) < density
+
+
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
+def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbourhood, corner_cutting):
+    rng = np.random.default_rng(3)
+    occupied = random_map(30, 41, 0.2, 1)
+    nodes = np.array([[0, 0], [5, 6], [15, 20], [29, 40], [14, 39], [28, 2]] * 3)[: LANES + 2]  # two groups
+    nodes = nodes + np.arange(len(nodes))[:, None] % 3  # distinct-ish positions, some on obstacles
+    nodes = np.clip(nodes, 0, [29, 40])
+    cap = 7.5
+    engine = Engine(occupied, (0, 0), nodes=nodes, node_cap=cap, neighbourhood=neighbourhood,
+                    corner_cutting=corner_cutting)
+    # The same layers on the full grid: a goal layer with the node as source and cap DmaxQ.
+    full = [Engine(occupied, (r, c), goal_cap=cap, neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+            for r, c in nodes]
+    for iteration in range(40):
+        if iteration % 7 == 3:
+            cells = np.argwhere(rng.random(occupied.shape) < 0.05)
+            value = bool(iteration % 2)
+            engine.set_cells(cells, value)
+            for layer in full:
+                layer.set_cells(cells, value)
+        engine.step()
+        for layer in full:
+            layer.step()
+        for j, layer in enumerate(full):
+            np.testing.assert_array_equal(engine.node_distances(j), layer.goal_distances(),
+                                          err_msg=f"node {j} at iteration {iteration}")
+
+
+def test_node_on_an_obstacle_stays_at_the_cap_and_sample_reads_every_layer():
+    occupied = np.zeros((20, 20), bool)
+    occupied[10, 10] = True
+    nodes = np.array([[10, 10], [5, 5], [5, 9]])
+    engine = Engine(occupied, (0, 0), nodes=nodes, node_cap=6.0)
+    engine.converge()
+    assert (engine.node_distances(0) == 6.0).all()
+    values = engine.sample([[5, 5], [0, 0]])
+    assert values.shape == (2, 4)
+    assert values[0, 0] == pytest.approx(5 * math.sqrt(2), rel=1e-6)
+    assert values[0, 1] == 6.0 and values[0, 2] == 0.0 and values[0, 3] == 4.0
+    assert values[1, 0] == 0.0 and values[1, 2] == 6.0  # (0, 0) is 7.07 from (5, 5): beyond the cap
+
+
+def test_trace_follows_a_node_layer_to_its_node():
+    engine = Engine(np.zeros((30, 30), bool), (0, 0), nodes=np.array([[15, 15]]), node_cap=10.0)
+    engine.converge()
+    path = engine.trace(1, (15, 22), 50)
+    assert path[-1] == (15, 15)
+    assert engine.trace(1, (0, 0), 50) == []  # outside its vision
+
+
+def test_converge_equals_synchronous_iteration_for_node_layers_too():
+    occupied = random_map(25, 25, 0.25, 5)
+    nodes = np.argwhere(~occupied)[::37]
+    swept = Engine(occupied, tuple(np.argwhere(~occupied)[0]), nodes=nodes, node_cap=9.0)
+    swept.converge()
+    jacobi = Engine(occupied, tuple(np.argwhere(~occupied)[0]), nodes=nodes, node_cap=9.0)
+    while jacobi.step():
+        pass
+    np.testing.assert_array_equal(swept.goal_distances(), jacobi.goal_distances())
+    for j in range(len(nodes)):
+        np.testing.assert_array_equal(swept.node_distances(j), jacobi.node_distances(j))
