@@ -58,3 +58,70 @@ def _nearest_free(occupied: np.ndarray, cell: tuple[int, int], radius: float) ->
             if inside and d <= radius and d < best_d and not occupied[r, c]:
                 best, best_d = (r, c), d
     return best
+
+
+class NodeGraph:
+    """The graph of eq. 14 over the nodes Q plus the robot R and the goal G, from the layers' values.
+
+    ``samples`` is the engine's :meth:`~tdp.engine.Engine.sample` at the node cells then R then G: row k, column 0
+    the goal layer at cell k, column 1 + j node j's layer at cell k. Vertex ids: nodes 0..n-1, R = n, G = n + 1.
+    Pair weight D(Qa, Qb) = max(layer_b[Qa], layer_a[Qb]) (conservative while news travels); robot and goal edges
+    are layer_j[R] and layer_j[G]; R-G is direct when layer_0[R] < DmaxQ. An edge exists where its weight < DmaxQ.
+    Inactive nodes (covered by an obstacle) have no edges; ``blocked`` pairs (the monitor's verdict: their distance
+    is still rising after a cut, so their weight is stale) have none either, and neither has the edge from R (or G)
+    to a node j blocked from a node i that R (or G) reaches first: R's reading of j then most likely went through
+    the cut, and the news has not reached R yet.
+    """
+
+    def __init__(self, samples: np.ndarray, vision: float, active: np.ndarray, blocked: np.ndarray | None = None):
+        n = samples.shape[0] - 2
+        self.n = n
+        self.vision = float(vision)
+        self.active = np.asarray(active, bool)
+        node_rows = samples[:n, 1:].astype(np.float64)
+        self.pairs = np.maximum(node_rows, node_rows.T)
+        self.robot_readings = samples[n, 1:].astype(np.float64)  # layer_j[R] before any edge is dropped
+        self.robot = self.robot_readings.copy()
+        self.goal = samples[n + 1, 1:].astype(np.float64)
+        self.robot_goal = float(samples[n, 0])
+        if blocked is not None:
+            self.pairs[blocked] = np.inf
+            self.robot[self._cut_off(self.robot, blocked)] = np.inf
+            self.goal[self._cut_off(self.goal, blocked)] = np.inf
+        inactive = ~self.active
+        self.pairs[inactive, :] = np.inf
+        self.pairs[:, inactive] = np.inf
+        self.robot[inactive] = np.inf
+        self.goal[inactive] = np.inf
+
+    @staticmethod
+    def _cut_off(readings: np.ndarray, blocked: np.ndarray) -> np.ndarray:
+        """Nodes j with a blocked pair (i, j) where readings[i] < readings[j]."""
+        nearer = readings[:, None] < readings[None, :]
+        return (blocked & nearer).any(axis=0)
+
+    @property
+    def robot_id(self) -> int:
+        return self.n
+
+    @property
+    def goal_id(self) -> int:
+        return self.n + 1
+
+    def neighbours(self, vertex: int):
+        """(neighbour, weight) pairs of ``vertex`` over the edges with weight < DmaxQ."""
+        n, cap = self.n, self.vision
+        if vertex == self.robot_id:
+            weights = np.append(self.robot, [np.inf, self.robot_goal])
+        elif vertex == self.goal_id:
+            weights = np.append(self.goal, [self.robot_goal, np.inf])
+        else:
+            weights = np.append(self.pairs[vertex], [self.robot[vertex], self.goal[vertex]])
+            weights[vertex] = np.inf
+        for other in np.flatnonzero(weights < cap):
+            yield int(other), float(weights[other])
+
+    def edges(self) -> list[tuple[int, int, float]]:
+        """Every node-node edge (a < b, weight) of the current graph."""
+        a, b = np.nonzero(np.triu(self.pairs < self.vision, k=1))
+        return [(int(i), int(j), float(self.pairs[i, j])) for i, j in zip(a, b)]

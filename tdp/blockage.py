@@ -1,0 +1,80 @@
+"""Blockage monitor (paper 4.1 as reconstructed in DESIGN 5.4) and relevance to the robot's current path."""
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+
+
+class BlockageMonitor:
+    """Watches the node-pair distances D(a, b, i) iteration by iteration.
+
+    A pair (a, b) that was connected (D < DmaxQ) ``window`` (J) iterations ago is blocked at iteration i when
+    ``D(a, b, i) - D(a, b, i - J) >= rise`` (U) or ``D(a, b, i) >= DmaxQ``. A pair is reported once, on the first
+    iteration its condition holds, and again only after the condition has cleared. Pairs with a node covered by an
+    obstacle are not watched (the node is inactive, DESIGN 5.1).
+    """
+
+    def __init__(self, vision: float, window: int = 8, rise: float = 7.0):
+        self.vision = float(vision)
+        self.window = int(window)
+        self.rise = float(rise)
+        self._history: deque[np.ndarray] = deque(maxlen=self.window + 1)
+        self._blocked: np.ndarray | None = None
+
+    @property
+    def blocked(self) -> np.ndarray | None:
+        """bool (n x n): the pairs whose blockage condition holds at the last iteration (None before any)."""
+        return self._blocked
+
+    def observe(self, pairs: np.ndarray) -> list[tuple[int, int]]:
+        """Record one iteration's pair distances (n x n; inf where a node is inactive); return the pairs (a < b)
+        that became blocked at this iteration."""
+        pairs = np.array(pairs, np.float64)
+        self._history.append(pairs)
+        if self._blocked is None:
+            self._blocked = np.zeros(pairs.shape, bool)
+        if len(self._history) <= self.window:
+            return []
+        before = self._history[0]
+        watched = (before < self.vision) & np.isfinite(pairs)
+        blocked = watched & ((pairs - before >= self.rise) | (pairs >= self.vision))
+        fresh = blocked & ~self._blocked
+        self._blocked = blocked | blocked.T
+        a, b = np.nonzero(np.triu(fresh, k=1))
+        return [(int(i), int(j)) for i, j in zip(a, b)]
+
+
+def segment_near_path(a: np.ndarray, b: np.ndarray, path: np.ndarray, reach: float) -> bool:
+    """Whether the segment a-b passes within ``reach`` cells (Euclidean) of any cell of ``path`` (m, 2)."""
+    if len(path) == 0:
+        return False
+    a, b, path = np.asarray(a, float), np.asarray(b, float), np.asarray(path, float)
+    ab = b - a
+    length2 = float(ab @ ab)
+    t = np.zeros(len(path)) if length2 == 0 else np.clip((path - a) @ ab / length2, 0.0, 1.0)
+    nearest = a + t[:, None] * ab
+    return bool((np.hypot(*(path - nearest).T) <= reach).any())
+
+
+def _orientation(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Sign of the turn p -> q -> r (arrays of points broadcast together)."""
+    return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+
+
+def crossing_blocked(nodes: np.ndarray, blocked: np.ndarray) -> np.ndarray:
+    """bool (n x n): node pairs whose segment properly crosses the segment of a blocked pair.
+
+    A blocked pair says the region between its nodes was cut; a pair whose straight segment crosses it most likely
+    went through the same region, so its weight is as stale as the blocked pair's was.
+    """
+    n = len(nodes)
+    a, b = np.nonzero(np.triu(blocked, k=1))
+    if not len(a):
+        return np.zeros((n, n), bool)
+    p = nodes[:, None, None, :].astype(float)   # pair (i, j): from node i ...
+    q = nodes[None, :, None, :].astype(float)   # ... to node j
+    r, s = nodes[a][None, None].astype(float), nodes[b][None, None].astype(float)  # each blocked segment
+    proper = ((_orientation(p, q, r) * _orientation(p, q, s) < 0) &
+              (_orientation(r, s, p) * _orientation(r, s, q) < 0))
+    return proper.any(axis=2)
