@@ -2,8 +2,13 @@
 
 Kala, Shukla and Tiwari (2012), "Robot Path Planning using Dynamic Programming with Accelerating Nodes".
 """
+from . import scenarios
 from .field import DistanceField
 from .grid import GridMap, Problem, load_map, load_scenarios
+from .navigator import Navigator, NavigatorConfig
+from .simulate import Episode, simulate
+from .world import Obstacle, Scenario
 
-__all__ = ["DistanceField", "GridMap", "Problem", "load_map", "load_scenarios"]
+__all__ = ["DistanceField", "Episode", "GridMap", "Navigator", "NavigatorConfig", "Obstacle", "Problem", "Scenario",
+           "load_map", "load_scenarios", "scenarios", "simulate"]
 __version__ = "0.1.0"

@@ -1,0 +1,287 @@
+"""The navigator: the loop of the paper's Fig. 4 (sections 4.1-4.3, DESIGN 5.4-5.6).
+
+Setup (``converge``), then per tick: K DP iterations with the blockage monitor after each, the relevance test of
+new blockages against the robot's current path, a backup path by uniform-cost search over the node graph, subgoal
+following with re-search, the switch back to the DP after ||Path|| iterations, and waiting while no route exists.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from .blockage import BlockageMonitor, crossing_blocked, segment_near_path
+from .engine import Engine
+from .field import cells_from, check_cap
+from .grid import GridMap
+from .nodes import NodeGraph, place_nodes
+from .search import uniform_cost_search
+from .stencil import check_neighbourhood
+
+MODES = ("dp", "backup", "wait")
+PLACEMENTS = ("drop", "nudge")
+
+
+def _check_int(value, name: str, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < low:
+        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    return value
+
+
+def _check_number(value, name: str, low: float, inclusive: bool = False) -> float:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or value < low or (value == low and not inclusive):
+        raise ValueError(f"{name} must be a finite number {'>=' if inclusive else '>'} {low}, got {value!r}")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class NavigatorConfig:
+    """Every parameter of the planner.
+
+    accelerating: use accelerating nodes (False: plain DP, the paper's baseline).
+    nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
+    spacing: lattice spacing s in cells, overriding ``nodes`` when given.
+    vision: DmaxQ / s (DESIGN 5.2). updates_per_move: K, DP iterations per robot move.
+    detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
+    d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (DESIGN 4).
+    placement: "drop" a lattice node on an obstacle (paper) or "nudge" it to a free cell within s/4.
+    """
+
+    accelerating: bool = True
+    nodes: int = 25
+    vision: float = 2.5
+    updates_per_move: int = 4
+    detect_window: int = 8
+    detect_rise: float | None = None
+    d_max: float = math.inf
+    neighbourhood: int = 16
+    corner_cutting: bool = False
+    spacing: float | None = None
+    placement: str = "drop"
+
+    def __post_init__(self):
+        if not isinstance(self.accelerating, bool):
+            raise ValueError(f"accelerating must be True or False, got {self.accelerating!r}")
+        _check_int(self.nodes, "nodes", 1)
+        if self.spacing is not None:
+            _check_number(self.spacing, "spacing", 1.0, inclusive=True)
+        _check_number(self.vision, "vision", 0.0)
+        _check_int(self.updates_per_move, "updates_per_move", 1)
+        _check_int(self.detect_window, "detect_window", 1)
+        if self.detect_rise is not None:
+            _check_number(self.detect_rise, "detect_rise", 0.0)
+        check_cap(self.d_max, "d_max")
+        check_neighbourhood(self.neighbourhood)
+        if not isinstance(self.corner_cutting, bool):
+            raise ValueError(f"corner_cutting must be True or False, got {self.corner_cutting!r}")
+        if self.placement not in PLACEMENTS:
+            raise ValueError(f"placement must be one of {PLACEMENTS}, got {self.placement!r}")
+
+    @property
+    def rise(self) -> float:
+        """U: the rise over J iterations that signals a blockage."""
+        return float(self.detect_window - 1) if self.detect_rise is None else float(self.detect_rise)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class Detection:
+    """A pair of nodes found blocked at DP iteration ``iteration``; ``relevant`` if near the robot's path."""
+
+    iteration: int
+    pair: tuple[int, int]
+    relevant: bool
+
+
+@dataclass
+class TickResult:
+    """What one tick decided: the mode, the cell to move to (None: stay), and what happened on the way."""
+
+    mode: str
+    next_cell: tuple[int, int] | None
+    detections: list[Detection] = field(default_factory=list)
+    backup_path: list[int] | None = None
+    backup_cost: float | None = None
+    subgoal: int | None = None
+    switched_back: bool = False
+    timings: dict = field(default_factory=dict)
+
+
+class Navigator:
+    """Plans a robot's moves on a changing grid with the DP and, optionally, accelerating nodes.
+
+    Cells are (row, col); the navigator never moves the robot itself: :meth:`tick` says where to go and the caller
+    reports the robot's position with :meth:`move_robot`. Map edits (:meth:`update_map`) and goal moves
+    (:meth:`set_goal`) take effect at the next DP iteration.
+    """
+
+    def __init__(self, grid: GridMap, start: tuple[int, int], goal: tuple[int, int],
+                 config: NavigatorConfig = NavigatorConfig()):
+        if not isinstance(config, NavigatorConfig):
+            raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
+        self.grid = grid
+        self.config = config
+        self.robot = grid.check_free_cell(start, "start")
+        goal = grid.check_free_cell(goal, "goal")
+        if config.accelerating:
+            count = None if config.spacing is not None else config.nodes
+            lattice = place_nodes(grid.occupied, count=count, spacing=config.spacing,
+                                  nudge=config.placement == "nudge")
+            self.nodes, self.spacing = lattice.cells, lattice.spacing
+        else:
+            self.nodes, self.spacing = np.zeros((0, 2), np.int32), 0.0
+        self.vision = config.vision * self.spacing
+        self.engine = Engine(grid.occupied, goal, goal_cap=config.d_max, nodes=self.nodes,
+                             node_cap=self.vision, neighbourhood=config.neighbourhood,
+                             corner_cutting=config.corner_cutting)
+        self.monitor = BlockageMonitor(self.vision, config.detect_window, config.rise)
+        self.state = "dp"  # what the robot follows: "dp" (S(., G)), "backup" (S(., subgoal)) or "no-route"
+        self._path_cost = 0.0
+        self._since_detection = 0
+        self._subgoal: int | None = None
+
+    # -- inputs ------------------------------------------------------------------------------------------------
+    @property
+    def goal(self) -> tuple[int, int]:
+        return self.engine.goal
+
+    def setup(self) -> int:
+        """The setup phase: converge every layer (robot stationary); returns the sweeps it took."""
+        return self.engine.converge()
+
+    def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
+        """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
+        cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
+        self.engine.set_cells(cells, occupied)
+
+    def set_goal(self, goal: tuple[int, int]) -> None:
+        """Move the target (moving-target scenarios)."""
+        if not self.grid.contains(goal):
+            raise ValueError(f"goal {goal} is outside the {self.grid.shape[0]} x {self.grid.shape[1]} map")
+        self.engine.set_goal(goal)
+
+    def move_robot(self, cell: tuple[int, int]) -> None:
+        """Tell the navigator where the robot is now."""
+        self.robot = (int(cell[0]), int(cell[1]))
+
+    # -- the tick ----------------------------------------------------------------------------------------------
+    def tick(self) -> TickResult:
+        """K DP iterations with the monitor after each, then the mode logic; returns where to move.
+
+        The mode is "dp" or "backup" while the robot moves, "wait" while it has nowhere to go (the goal layer has
+        no successor, or the backup search found no route: it is retried every tick).
+        """
+        dp_s = monitor_s = 0.0
+        new_pairs: list[tuple[int, tuple[int, int]]] = []
+        for _ in range(self.config.updates_per_move):
+            began = time.perf_counter()
+            self.engine.step(1)
+            dp_s += time.perf_counter() - began
+            if self.config.accelerating:
+                began = time.perf_counter()
+                pairs = self._graph().pairs
+                new_pairs += [(self.engine.iterations, p) for p in self.monitor.observe(pairs)]
+                monitor_s += time.perf_counter() - began
+            self._since_detection += 1
+        began = time.perf_counter()
+        result = TickResult(mode=self.state, next_cell=None, detections=self._classify(new_pairs))
+        monitor_s += time.perf_counter() - began
+
+        began = time.perf_counter()
+        self._update_state(result)
+        result.next_cell = self._next_cell()
+        if result.next_cell is None and self.state == "backup":
+            self._search(result, keep_count=True)  # the subgoal's layer does not reach R: look again
+            result.next_cell = self._next_cell()
+        search_s = time.perf_counter() - began
+        moving = result.next_cell is not None or self.robot == self.goal
+        result.mode = ("backup" if self.state == "backup" else "dp") if moving else "wait"
+        result.subgoal = self._subgoal if self.state == "backup" else None
+        result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
+        return result
+
+    def _graph(self, without_blocked: bool = False) -> NodeGraph:
+        """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
+        whose segments cross them."""
+        cells = np.vstack([self.nodes, [self.robot], [self.goal]])
+        samples = self.engine.sample(cells)
+        active = ~self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+        unreliable = None
+        if without_blocked and self.monitor.blocked is not None:
+            unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
+        return NodeGraph(samples, self.vision, active, unreliable)
+
+    def current_path(self) -> list[tuple[int, int]]:
+        """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
+        limit = max(1, int(4 * self.vision)) if self.config.accelerating else self.grid.shape[0] * self.grid.shape[1]
+        return [self.robot] + self.engine.trace(0, self.robot, limit)
+
+    def _classify(self, new_pairs) -> list[Detection]:
+        """Mark each newly blocked pair relevant if its segment passes within s cells of the current path."""
+        if not new_pairs:
+            return []
+        path = np.array(self.current_path())
+        return [Detection(iteration, pair, segment_near_path(self.nodes[pair[0]], self.nodes[pair[1]], path,
+                                                              self.spacing))
+                for iteration, pair in new_pairs]
+
+    def _update_state(self, result: TickResult) -> None:
+        """Start a backup on a relevant blockage, re-search near the subgoal, switch back after ||Path||."""
+        if any(d.relevant for d in result.detections):
+            self._since_detection = 0
+            self._search(result, keep_count=False)
+        elif self.state == "backup":
+            if self._since_detection >= self._path_cost:
+                self.state, self._subgoal = "dp", None
+                result.switched_back = True
+            elif self._layer_at_robot(self._subgoal) < self.vision / 2:
+                self._search(result, keep_count=True)
+        elif self.state == "no-route":
+            self._search(result, keep_count=False)
+
+    def _search(self, result: TickResult, keep_count: bool) -> None:
+        """Uniform-cost search R -> G; on success follow the subgoal (DESIGN 5.5), else wait and retry."""
+        graph = self._graph(without_blocked=True)
+        found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)
+        if found is None:
+            self.state, self._subgoal = "no-route", None
+            return
+        path, cost = found
+        if not keep_count:
+            self._path_cost = cost
+        result.backup_path, result.backup_cost = path, cost
+        self.state = "backup"
+        self._subgoal = self._choose_subgoal(path, graph)
+
+    def _choose_subgoal(self, path: list[int], graph: NodeGraph) -> int:
+        """Q2 (the second point after R), Q1 if R is outside Q2's vision, the last point if the path is shorter
+        (DESIGN 5.5). Q2 may be G itself (path <R, Q1, G>): then "R outside its vision" means layer_0[R] >= DmaxQ,
+        and the robot heads for Q1 rather than follow a goal layer that may still be stale. A node the robot
+        already stands on is skipped."""
+        if len(path) > 2 and self._layer_at_robot(path[1], graph) == 0:
+            path = path[:1] + path[2:]
+        index = min(2, len(path) - 1)
+        if index == 2 and self._layer_at_robot(path[2], graph) >= self.vision:
+            index = 1
+        return path[index]
+
+    def _layer_at_robot(self, vertex: int, graph: NodeGraph | None = None) -> float:
+        """The value at R of the layer of graph vertex ``vertex`` (a node, or G for the goal layer)."""
+        graph = graph or self._graph()
+        if vertex == graph.goal_id:
+            return graph.robot_goal
+        return float(graph.robot_readings[vertex])
+
+    def _next_cell(self) -> tuple[int, int] | None:
+        if self.robot == self.goal or self.state == "no-route":
+            return None
+        layer = 0
+        if self.state == "backup" and self._subgoal < len(self.nodes):
+            layer = 1 + self._subgoal
+        step = self.engine.trace(layer, self.robot, 1)
+        return step[0] if step else None

@@ -1,0 +1,196 @@
+"""Grid-level episodes: the world, the navigator and the robot, tick by tick; the oracle baseline; metrics."""
+from __future__ import annotations
+
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .field import DistanceField
+from .grid import GridMap
+from .navigator import Navigator, NavigatorConfig
+from .stencil import moves
+from .world import Scenario
+
+
+@dataclass
+class Episode:
+    """Metrics of one run (DESIGN 6). Lengths are in cells; timings in milliseconds per tick."""
+
+    scenario: str
+    config: dict
+    reached: bool
+    ticks: int
+    length: float
+    oracle_length: float
+    ratio: float
+    collisions: int
+    hits: int
+    iterations: int
+    detections: list[dict]
+    trajectory: list[tuple[int, int]]
+    modes: list[str]
+    target_path: list[tuple[int, int]]
+    oracle_trajectory: list[tuple[int, int]]
+    nodes: list[tuple[int, int]]
+    edges: list[tuple[int, int]]
+    closest_approach: float | None
+    turn_point: tuple[int, int] | None
+    switch_back_point: tuple[int, int] | None
+    timings: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return {k: v for k, v in self.__dict__.items()}
+
+
+class _Oracle:
+    """The same robot with unlimited compute: exact distances (a converged field) every tick."""
+
+    def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
+        self.field = DistanceField(grid, goal, config.neighbourhood, config.corner_cutting, config.d_max)
+        self.robot = start
+
+    def update_map(self, cells, occupied) -> None:
+        for value in (True, False):
+            self.field.set_occupied(cells[occupied == value], value)
+
+    def set_goal(self, goal) -> None:
+        self.field.set_goal(goal)
+
+    def move_robot(self, cell) -> None:
+        self.robot = cell
+
+    def next_cell(self):
+        self.field.converge()
+        return self.field.successor(self.robot)
+
+
+def _allowed_moves(config: NavigatorConfig) -> dict:
+    return {(m.dr, m.dc): m for m in moves(config.neighbourhood, config.corner_cutting)}
+
+
+def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
+    """Independent check of a move: a stencil move into a free cell, crossing only free cells."""
+    move = move_table.get((there[0] - here[0], there[1] - here[1]))
+    if move is None or occupied[there]:
+        return False
+    return all(not occupied[here[0] + dr, here[1] + dc] for dr, dc in move.crossed)
+
+
+def _box_distance(cell, box) -> float:
+    r0, c0, r1, c1 = box
+    dr = max(r0 - cell[0], 0, cell[0] - (r1 - 1))
+    dc = max(c0 - cell[1], 0, cell[1] - (c1 - 1))
+    return math.hypot(dr, dc)
+
+
+def _summary(samples: list[float]) -> dict:
+    values = np.array(samples) * 1e3 if samples else np.zeros(1)
+    return {"mean": float(values.mean()), "p95": float(np.percentile(values, 95)), "max": float(values.max())}
+
+
+def _run(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
+    """Drive ``planner`` (a Navigator, or the oracle) through the scenario; returns the raw record."""
+    table = _allowed_moves(config)
+    occupied = scenario.occupancy(0)
+    robot, target = scenario.start, scenario.goal
+    record = {"trajectory": [robot], "modes": [], "length": 0.0, "collisions": 0, "hits": 0, "ticks": 0,
+              "reached": robot == target, "results": [], "target_path": [target]}
+    for tick in range(1, max_ticks + 1):
+        if record["reached"]:
+            break
+        now = scenario.occupancy(tick)
+        changed = np.argwhere(now != occupied)
+        if len(changed):
+            planner.update_map(changed, now[changed[:, 0], changed[:, 1]])
+        occupied = now
+        record["hits"] += int(occupied[robot])
+        new_target = scenario.target(tick)
+        if new_target != target:
+            target = new_target
+            planner.set_goal(target)
+            record["target_path"].append(target)
+        result = planner.tick() if isinstance(planner, Navigator) else None
+        wanted = result.next_cell if result else planner.next_cell()
+        if wanted is not None and not occupied[robot]:
+            if _legal(table, occupied, robot, wanted):
+                record["length"] += math.dist(robot, wanted)
+                robot = wanted
+            else:
+                record["collisions"] += 1
+        planner.move_robot(robot)
+        record["trajectory"].append(robot)
+        record["modes"].append(result.mode if result else "oracle")
+        record["results"].append(result)
+        record["ticks"] = tick
+        record["reached"] = robot == target
+        if on_tick:
+            on_tick(tick, robot)
+    return record
+
+
+def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), max_ticks: int | None = None,
+             progress: bool = False) -> Episode:
+    """Run ``scenario`` with the planner of ``config`` and with the oracle; return the Episode's metrics.
+
+    Each tick: the world moves (obstacles, target), the planner runs K DP iterations and its monitor, then the robot
+    makes one stencil move to the successor, unless that cell is occupied. ``max_ticks`` defaults to the
+    scenario's (or 4 (H + W)). ``progress`` prints a line every 25 ticks to stderr.
+    """
+    if not isinstance(scenario, Scenario):
+        raise ValueError(f"scenario must be a tdp.Scenario, got {type(scenario).__name__}")
+    if not isinstance(config, NavigatorConfig):
+        raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
+    limit = max_ticks or scenario.max_ticks or 4 * sum(scenario.grid.shape)
+    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
+        raise ValueError(f"max_ticks must be a positive integer, got {max_ticks!r}")
+    report = None
+    if progress:
+        def report(tick, robot):
+            if tick % 25 == 0:
+                print(f"  [{scenario.name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
+
+    start_grid = GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
+    navigator = Navigator(start_grid, scenario.start, scenario.goal, config)
+    navigator.setup()
+    nodes = [tuple(map(int, c)) for c in navigator.nodes]
+    edges = [(a, b) for a, b, _ in navigator._graph().edges()] if config.accelerating else []
+    record = _run(scenario, navigator, config, limit, report)
+
+    oracle = _Oracle(start_grid, scenario.start, scenario.goal, config)
+    oracle_record = _run(scenario, oracle, config, limit)
+    return _episode(scenario, config, navigator, record, oracle_record, nodes, edges)
+
+
+def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
+    results = [r for r in record["results"] if r is not None]
+    detections, turn, back = [], None, None
+    for tick, result in enumerate(results, start=1):
+        for d in result.detections:
+            delay = None
+            if scenario.change_tick is not None:
+                delay = d.iteration - scenario.change_tick * config.updates_per_move
+            detections.append({"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant,
+                               "delay_iterations": delay, "robot": list(record["trajectory"][tick - 1])})
+            if d.relevant and turn is None:
+                turn = record["trajectory"][tick - 1]
+        if result.switched_back and back is None:
+            back = record["trajectory"][tick]
+    closest = None
+    if scenario.blocking is not None:
+        obstacle = scenario.obstacles[scenario.blocking]
+        distances = [_box_distance(cell, obstacle.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
+                     if obstacle.present(tick)]
+        closest = min(distances) if distances else None
+    ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
+    timings = {name: _summary([r.timings[name] for r in results]) for name in ("dp", "monitor", "search")}
+    timings["total"] = _summary([sum(r.timings.values()) for r in results])
+    return Episode(
+        scenario=scenario.name, config=config.to_dict(), reached=record["reached"], ticks=record["ticks"],
+        length=record["length"], oracle_length=oracle_record["length"], ratio=ratio,
+        collisions=record["collisions"], hits=record["hits"], iterations=navigator.engine.iterations,
+        detections=detections, trajectory=record["trajectory"], modes=record["modes"],
+        target_path=record["target_path"], oracle_trajectory=oracle_record["trajectory"], nodes=nodes, edges=edges,
+        closest_approach=closest, turn_point=turn, switch_back_point=back, timings=timings)

@@ -1,0 +1,128 @@
+"""Grid-level dynamic world: box obstacles that move, appear and vanish, and a moving target (DESIGN 6)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .grid import GridMap
+
+
+def _polyline_point(points: list[tuple[float, float]], travelled: float) -> tuple[float, float]:
+    """The point ``travelled`` cells along the polyline through ``points`` (its end once travelled past it)."""
+    for (r0, c0), (r1, c1) in zip(points, points[1:]):
+        length = math.hypot(r1 - r0, c1 - c0)
+        if travelled <= length and length > 0:
+            t = travelled / length
+            return r0 + t * (r1 - r0), c0 + t * (c1 - c0)
+        travelled -= length
+    return points[-1]
+
+
+def _round(x: float) -> int:
+    return int(math.floor(x + 0.5))
+
+
+@dataclass(frozen=True)
+class Obstacle:
+    """A box obstacle: rows r0..r1-1 and cols c0..c1-1 at tick 0 (``box = (r0, c0, r1, c1)``), whose top-left
+    corner then visits ``waypoints`` in order at ``speed`` cells per tick along straight segments, stopping at the
+    last one. It exists from tick ``appear_at`` (None: from the start; its motion starts then) until tick
+    ``vanish_at`` (None: never)."""
+
+    box: tuple[int, int, int, int]
+    waypoints: tuple[tuple[int, int], ...] = ()
+    speed: float = 0.5
+    appear_at: int | None = None
+    vanish_at: int | None = None
+
+    def __post_init__(self):
+        try:
+            box = tuple(int(v) for v in self.box)
+            waypoints = tuple((int(r), int(c)) for r, c in self.waypoints)
+        except (TypeError, ValueError):
+            raise ValueError(f"Obstacle box must be (r0, c0, r1, c1) and waypoints (row, col) pairs of integers, "
+                             f"got box={self.box!r}, waypoints={self.waypoints!r}") from None
+        if len(box) != 4 or box[2] <= box[0] or box[3] <= box[1]:
+            raise ValueError(f"Obstacle box must be (r0, c0, r1, c1) with r1 > r0 and c1 > c0, got {self.box!r}")
+        if isinstance(self.speed, bool) or not isinstance(self.speed, (int, float)) or not 0 < self.speed < math.inf:
+            raise ValueError(f"Obstacle speed must be a positive number of cells per tick, got {self.speed!r}")
+        for name in ("appear_at", "vanish_at"):
+            value = getattr(self, name)
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
+                raise ValueError(f"Obstacle {name} must be a tick (integer >= 0) or None, got {value!r}")
+        if self.appear_at is not None and self.vanish_at is not None and self.vanish_at <= self.appear_at:
+            raise ValueError(f"Obstacle vanish_at ({self.vanish_at}) must come after appear_at ({self.appear_at})")
+        object.__setattr__(self, "box", box)
+        object.__setattr__(self, "waypoints", waypoints)
+
+    def present(self, tick: int) -> bool:
+        """Whether the box exists at ``tick``."""
+        return (self.appear_at is None or tick >= self.appear_at) and (self.vanish_at is None or tick < self.vanish_at)
+
+    def corner(self, tick: int) -> tuple[float, float]:
+        """Top-left corner (row, col) at ``tick``, in cells (fractional while between cells)."""
+        start = self.appear_at or 0
+        points = [(float(self.box[0]), float(self.box[1]))] + [(float(r), float(c)) for r, c in self.waypoints]
+        return _polyline_point(points, self.speed * max(0, tick - start))
+
+    def footprint(self, tick: int) -> tuple[int, int, int, int]:
+        """(r0, c0, r1, c1) of the cells covered at ``tick`` (the corner rounded to the nearest cell)."""
+        r, c = (_round(v) for v in self.corner(tick))
+        return r, c, r + self.box[2] - self.box[0], c + self.box[3] - self.box[1]
+
+
+@dataclass
+class Scenario:
+    """A world: static ``grid``, robot ``start``, target ``goal`` (which then visits ``target_waypoints`` at
+    ``target_speed`` cells per tick), and box ``obstacles``.
+
+    ``change_tick`` (when the blockage or clearing happens) and ``blocking`` (index of the obstacle that causes it)
+    are used by the metrics; ``max_ticks`` bounds an episode.
+    """
+
+    grid: GridMap
+    start: tuple[int, int]
+    goal: tuple[int, int]
+    obstacles: list[Obstacle] = field(default_factory=list)
+    target_waypoints: list[tuple[int, int]] = field(default_factory=list)
+    target_speed: float = 0.5
+    name: str = "custom"
+    description: str = ""
+    change_tick: int | None = None
+    blocking: int | None = None
+    max_ticks: int | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.grid, GridMap):
+            raise ValueError(f"Scenario grid must be a tdp.GridMap, got {type(self.grid).__name__}")
+        if not all(isinstance(o, Obstacle) for o in self.obstacles):
+            raise ValueError("Scenario obstacles must be tdp.Obstacle objects")
+        occupied = self.occupancy(0)
+        for name in ("start", "goal"):
+            cell = self.grid.check_free_cell(getattr(self, name), name)
+            if occupied[cell]:
+                raise ValueError(f"{name} {cell} is covered by an obstacle at tick 0")
+            setattr(self, name, cell)
+        self.target_waypoints = [self.grid.check_free_cell(w, "target waypoint") for w in self.target_waypoints]
+        if not (isinstance(self.target_speed, (int, float)) and 0 < self.target_speed < math.inf):
+            raise ValueError(f"target_speed must be a positive number of cells per tick, got {self.target_speed!r}")
+        if self.blocking is not None and not 0 <= self.blocking < len(self.obstacles):
+            raise ValueError(f"blocking must index an obstacle (0..{len(self.obstacles) - 1}), got {self.blocking}")
+
+    def occupancy(self, tick: int) -> np.ndarray:
+        """bool (H, W): the static map plus every box present at ``tick``."""
+        occupied = self.grid.occupied.copy()
+        rows, cols = self.grid.shape
+        for obstacle in self.obstacles:
+            if obstacle.present(tick):
+                r0, c0, r1, c1 = obstacle.footprint(tick)
+                occupied[max(0, r0):max(0, min(rows, r1)), max(0, c0):max(0, min(cols, c1))] = True
+        return occupied
+
+    def target(self, tick: int) -> tuple[int, int]:
+        """The target's cell at ``tick``."""
+        points = [tuple(map(float, self.goal))] + [tuple(map(float, w)) for w in self.target_waypoints]
+        r, c = _polyline_point(points, self.target_speed * tick)
+        return _round(r), _round(c)
