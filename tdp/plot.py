@@ -49,3 +49,61 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
     fig.savefig(out, dpi=120)
     plt.close(fig)
     return out
+
+
+MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "oracle": "tab:gray"}
+
+
+def _box_patch(plt, box, **style):
+    r0, c0, r1, c1 = box
+    return plt.Rectangle((c0 - 0.5, r0 - 0.5), c1 - c0, r1 - r0, **style)
+
+
+def save_episode_figure(scenario, episode, out: str | Path) -> Path:
+    """A top-down figure like the paper's: map, nodes and their edges, the trajectory coloured by mode, the
+    oracle's path, obstacles' first (outline) and last (filled) positions, the target path, the turn point A and
+    the switch-back point B."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 7.4))
+    draw_map(ax, scenario.grid.occupied)
+    nodes = np.array(episode.nodes).reshape(-1, 2)
+    for a, b in episode.edges:
+        ax.plot(nodes[[a, b], 1], nodes[[a, b], 0], "-", color="0.8", lw=0.6, zorder=1)
+    if len(nodes):
+        ax.plot(nodes[:, 1], nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=6, label="accelerating nodes")
+    last = episode.ticks
+    for obstacle in scenario.obstacles:
+        first = obstacle.appear_at or 0
+        ax.add_patch(_box_patch(plt, obstacle.footprint(first), fill=False, ec="tab:brown", lw=1.2, ls="--"))
+        end = min(last, (obstacle.vanish_at - 1) if obstacle.vanish_at else last)
+        if obstacle.present(end):
+            ax.add_patch(_box_patch(plt, obstacle.footprint(end), color="tab:brown", alpha=0.6))
+    oracle = np.array(episode.oracle_trajectory)
+    ax.plot(oracle[:, 1], oracle[:, 0], ":", color="0.35", lw=1.3, label="oracle")
+    trajectory = np.array(episode.trajectory)
+    for k, mode in enumerate(episode.modes):
+        ax.plot(trajectory[k:k + 2, 1], trajectory[k:k + 2, 0], "-", color=MODE_COLOURS[mode], lw=2.2)
+    for mode, colour in MODE_COLOURS.items():
+        if mode in episode.modes:
+            ax.plot([], [], "-", color=colour, lw=2.2, label=f"robot: {mode}")
+    target = np.array(episode.target_path)
+    if len(target) > 1:
+        ax.plot(target[:, 1], target[:, 0], "--", color="tab:green", lw=1.5, label="target path")
+    ax.plot(trajectory[0, 1], trajectory[0, 0], "s", color="tab:green", ms=8)
+    ax.plot(target[-1, 1], target[-1, 0], "*", color="tab:red", ms=14)
+    for name, point in (("A", episode.turn_point), ("B", episode.switch_back_point)):
+        if point is not None:
+            ax.annotate(name, (point[1], point[0]), xytext=(6, -6), textcoords="offset points", fontsize=13,
+                        weight="bold", color="black")
+            ax.plot(point[1], point[0], "kx", ms=9, mew=2)
+    accelerating = "accelerating nodes" if episode.config["accelerating"] else "plain DP"
+    ax.set_title(f"{episode.scenario}, {accelerating}, K = {episode.config['updates_per_move']}: "
+                 f"length {episode.length:.1f} (oracle {episode.oracle_length:.1f}, ratio {episode.ratio:.3f})",
+                 fontsize=9)
+    ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out

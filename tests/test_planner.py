@@ -1,0 +1,258 @@
+"""The accelerating-nodes planner end to end at grid level (paper sections 3.3-5.1, DESIGN 5-6)."""
+import itertools
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import tdp
+from tdp.blockage import BlockageMonitor, crossing_blocked, segment_near_path
+from tdp.nodes import NodeGraph, place_nodes
+from tdp.search import uniform_cost_search
+
+DEFAULT = tdp.NavigatorConfig()
+
+
+@pytest.fixture(scope="module")
+def episodes():
+    """Each scenario once with the defaults (K = 4) and the blockage ones at K = 1 with and without nodes."""
+    runs = {(name, 4, True): tdp.simulate(tdp.scenarios.get(name), DEFAULT) for name in tdp.scenarios.names()}
+    for name in ("sudden-blockage", "moving-blockage", "moving-obstacles"):
+        for accelerating in (True, False):
+            config = tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=1)
+            runs[(name, 1, accelerating)] = tdp.simulate(tdp.scenarios.get(name), config)
+    return runs
+
+
+@pytest.mark.parametrize("name", tdp.scenarios.names())
+def test_every_scenario_reaches_the_goal_without_collision(episodes, name):
+    episode = episodes[(name, 4, True)]
+    assert episode.reached
+    assert episode.collisions == 0 and episode.hits == 0
+    assert len(episode.modes) == episode.ticks
+    assert episode.ratio < 1.1
+
+
+def test_static_scenario_is_exactly_the_oracle(episodes):
+    episode = episodes[("static", 4, True)]
+    assert episode.ratio == 1.0
+    assert episode.trajectory == episode.oracle_trajectory
+    assert episode.detections == []
+
+
+@pytest.mark.parametrize("k", [1, 4])
+def test_moving_obstacles_cause_no_detection(episodes, k):
+    assert episodes[("moving-obstacles", k, True)].detections == []
+
+
+@pytest.mark.parametrize("name, k", [("sudden-blockage", 1), ("sudden-blockage", 4), ("moving-blockage", 1),
+                                     ("moving-blockage", 4)])
+def test_blockage_is_detected_within_j_plus_the_pairs_distance_to_the_change(episodes, name, k):
+    episode = episodes[(name, k, True)]
+    scenario = tdp.scenarios.get(name)
+    box = scenario.obstacles[scenario.blocking].footprint(scenario.change_tick)
+    first = next(d for d in episode.detections if d["relevant"])
+
+    def distance_to_box(cell):
+        r0, c0, r1, c1 = box
+        return math.hypot(max(r0 - cell[0], 0, cell[0] - r1 + 1), max(c0 - cell[1], 0, cell[1] - c1 + 1))
+
+    reach = min(distance_to_box(episode.nodes[i]) for i in first["pair"])
+    assert first["delay_iterations"] <= DEFAULT.detect_window + reach
+    assert episode.turn_point is not None
+
+
+def test_accelerating_nodes_beat_plain_dp_after_a_sudden_blockage_at_k1(episodes):
+    """The paper's central claim, measured: at one DP iteration per move the backup path keeps the robot near the
+    oracle, while plain DP drives on into the dead end."""
+    accelerating = episodes[("sudden-blockage", 1, True)]
+    plain = episodes[("sudden-blockage", 1, False)]
+    assert accelerating.ratio <= 1.10
+    assert accelerating.ratio <= plain.ratio - 0.15
+    assert accelerating.closest_approach > plain.closest_approach
+
+
+def test_sudden_blockage_turns_early_and_switches_back(episodes):
+    episode = episodes[("sudden-blockage", 4, True)]
+    assert episode.turn_point is not None and episode.switch_back_point is not None
+    assert "backup" in episode.modes
+    assert episode.modes[-1] == "dp"
+
+
+def test_clearing_takes_the_opened_passage(episodes):
+    trajectory = np.array(episodes[("clearing", 4, True)].trajectory)
+    through_a = (trajectory[:, 0] >= 44) & (trajectory[:, 0] < 48) & (trajectory[:, 1] >= 45) & (trajectory[:, 1] < 55)
+    assert through_a.any()
+
+
+def test_runs_are_deterministic(episodes):
+    again = tdp.simulate(tdp.scenarios.get("sudden-blockage"), tdp.NavigatorConfig(updates_per_move=1))
+    first = episodes[("sudden-blockage", 1, True)]
+    assert again.trajectory == first.trajectory and again.modes == first.modes
+    assert again.detections == first.detections and again.length == first.length
+
+
+def test_switch_back_after_path_cost_iterations():
+    scenario = tdp.scenarios.get("sudden-blockage")
+    config = tdp.NavigatorConfig(updates_per_move=4)
+    navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
+    navigator.setup()
+    occupied, robot = scenario.occupancy(0), scenario.start
+    last_detection, cost = None, None
+    for tick in range(1, 200):
+        now = scenario.occupancy(tick)
+        changed = np.argwhere(now != occupied)
+        navigator.update_map(changed, now[tuple(changed.T)])
+        occupied = now
+        result = navigator.tick()
+        if any(d.relevant for d in result.detections):
+            last_detection, cost = tick, result.backup_cost
+        if result.switched_back:
+            assert (tick - last_detection) * 4 >= cost > (tick - 1 - last_detection) * 4
+            return
+        robot = result.next_cell or robot
+        navigator.move_robot(robot)
+    pytest.fail("never switched back")
+
+
+def graph_from(robot_readings, goal_readings, pairs, robot_goal=np.inf, vision=10.0):
+    n = len(robot_readings)
+    samples = np.full((n + 2, n + 1), np.inf, np.float32)
+    samples[:n, 1:] = pairs
+    samples[n, 1:], samples[n + 1, 1:] = robot_readings, goal_readings
+    samples[n, 0] = robot_goal
+    return NodeGraph(samples, vision, np.ones(n, bool))
+
+
+def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
+    navigator = tdp.Navigator(tdp.GridMap(np.zeros((10, 10), bool)), (0, 0), (9, 9), tdp.NavigatorConfig(spacing=4.0))
+    assert navigator.vision == 10.0
+    pairs = np.array([[0, 4, 10], [4, 0, 4], [10, 4, 0]], float)
+    graph = graph_from([3, 6, 10], [10, 10, 2], pairs)
+    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 1      # Q2, within sight (6 < 10)
+    graph = graph_from([3, 12, 10], [10, 10, 2], pairs)
+    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 0      # Q2 out of sight: Q1
+    assert navigator._choose_subgoal([3, 2, 4], graph) == 2            # R, Q1, G with G out of sight: Q1
+    assert navigator._choose_subgoal([3, 4], graph) == 4               # R, G: the last point
+    near_goal = graph_from([3, 12, 10], [10, 10, 2], pairs, robot_goal=7.0)
+    assert navigator._choose_subgoal([3, 2, 4], near_goal) == 4        # R, Q1, G with G in sight: G
+    graph = graph_from([0, 6, 8], [10, 10, 2], pairs)
+    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 2      # standing on Q1: skip it
+
+
+def test_monitor_flags_a_steady_rise_and_a_lost_connection_but_not_a_small_change():
+    monitor = BlockageMonitor(vision=20.0, window=8, rise=7.0)
+    found = []
+    for i in range(30):
+        pairs = np.array([[0.0, 10.0 + max(0, i - 10), 5.0], [0, 0, 12.0 + 0.5 * (i > 15)], [0, 0, 0]])
+        pairs = np.maximum(pairs, pairs.T)
+        found += [(i, p) for p in monitor.observe(pairs)]
+    assert found == [(17, (0, 1))]  # 17 - 10 = 7 >= U over J = 8 iterations, reported once; 0.5 is ignored
+    monitor = BlockageMonitor(vision=20.0, window=2, rise=7.0)
+    assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (15.0, 15.0, 20.0)] == [[], [], [(0, 1)]]
+
+
+def test_monitor_ignores_inactive_nodes():
+    monitor = BlockageMonitor(vision=20.0, window=1, rise=1.0)
+    monitor.observe(np.array([[0, 5.0], [5.0, 0]]))
+    assert monitor.observe(np.array([[np.inf, np.inf], [np.inf, np.inf]])) == []
+
+
+def test_segment_geometry():
+    assert segment_near_path((0, 0), (0, 10), np.array([[3, 5]]), 3.0)
+    assert not segment_near_path((0, 0), (0, 10), np.array([[3, 5], [0, 14]]), 2.9)
+    nodes = np.array([[0, 5], [10, 5], [5, 0], [5, 10], [0, 0]])
+    blocked = np.zeros((5, 5), bool)
+    blocked[0, 1] = blocked[1, 0] = True
+    crossing = crossing_blocked(nodes, blocked)
+    assert crossing[2, 3] and crossing[3, 2]
+    assert not crossing[0, 4] and not crossing[2, 4]  # sharing an end, or beside it, is no crossing
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 7), st.integers(0, 2**31), st.floats(0.1, 0.9))
+def test_uniform_cost_search_agrees_with_brute_force(n, seed, density):
+    rng = np.random.default_rng(seed)
+    weights = np.where(rng.random((n, n)) < density, rng.integers(0, 10, (n, n)).astype(float), np.inf)
+    weights = np.minimum(weights, weights.T)
+    np.fill_diagonal(weights, np.inf)
+
+    def neighbours(v):
+        return [(int(u), float(weights[v, u])) for u in np.flatnonzero(np.isfinite(weights[v]))]
+
+    best = math.inf
+    for k in range(n - 1):
+        for middle in itertools.permutations(range(1, n - 1), k):
+            route = (0, *middle, n - 1)
+            best = min(best, sum(weights[a, b] for a, b in zip(route, route[1:])))
+    found = uniform_cost_search(neighbours, 0, n - 1)
+    if math.isinf(best):
+        assert found is None
+    else:
+        path, cost = found
+        assert cost == pytest.approx(best)
+        assert path[0] == 0 and path[-1] == n - 1
+        assert sum(weights[a, b] for a, b in zip(path, path[1:])) == pytest.approx(cost)
+
+
+def test_lattice_placement_drops_or_nudges_nodes_on_obstacles():
+    occupied = np.zeros((40, 40), bool)
+    occupied[9:12, 9:12] = True
+    dropped = place_nodes(occupied, spacing=20)
+    assert dropped.cells.tolist() == [[10, 30], [30, 10], [30, 30]]
+    nudged = place_nodes(occupied, spacing=20, nudge=True)
+    assert nudged.cells.tolist() == [[8, 10], [10, 30], [30, 10], [30, 30]]
+    assert len(place_nodes(np.zeros((100, 100), bool), count=25).cells) == 25
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"nodes": 0}, "nodes"), ({"vision": -1}, "vision"), ({"updates_per_move": 0}, "updates_per_move"),
+    ({"detect_window": 0}, "detect_window"), ({"detect_rise": -2}, "detect_rise"), ({"d_max": 0}, "d_max"),
+    ({"neighbourhood": 5}, "neighbourhood"), ({"placement": "random"}, "placement"), ({"spacing": 0.5}, "spacing"),
+    ({"accelerating": "yes"}, "accelerating"),
+])
+def test_invalid_config_raises(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        tdp.NavigatorConfig(**kwargs)
+
+
+def test_obstacles_move_appear_and_vanish():
+    box = tdp.Obstacle(box=(0, 0, 2, 3), waypoints=[(0, 4), (4, 4)], speed=0.5, appear_at=2, vanish_at=20)
+    assert not box.present(1) and box.present(2) and not box.present(20)
+    assert box.footprint(2) == (0, 0, 2, 3)
+    assert box.footprint(6) == (0, 2, 2, 5)          # 2 cells along after 4 ticks
+    assert box.footprint(100) == (4, 4, 6, 7)        # stops at its last waypoint
+    grid = tdp.GridMap(np.zeros((10, 10), bool))
+    scenario = tdp.Scenario(grid, (9, 9), (9, 0), obstacles=[box], target_waypoints=[(9, 4)], target_speed=1)
+    assert scenario.occupancy(2)[0:2, 0:3].all() and not scenario.occupancy(1).any()
+    assert scenario.target(2) == (9, 2) and scenario.target(50) == (9, 4)
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda g: tdp.Obstacle(box=(2, 2, 1, 5)), "r1 > r0"),
+    (lambda g: tdp.Obstacle(box=(0, 0, 1, 1), speed=0), "speed"),
+    (lambda g: tdp.Obstacle(box=(0, 0, 1, 1), appear_at=5, vanish_at=3), "vanish_at"),
+    (lambda g: tdp.Scenario(g, (0, 0), (0, 0), obstacles=[tdp.Obstacle(box=(0, 0, 1, 1))]), "covered"),
+    (lambda g: tdp.Scenario(g, (0, 0), (20, 0)), "outside"),
+    (lambda g: tdp.Scenario(g, (0, 0), (5, 5), target_speed=-1), "target_speed"),
+    (lambda g: tdp.scenarios.get("nowhere"), "unknown scenario"),
+    (lambda g: tdp.simulate(tdp.scenarios.get("static"), max_ticks=-3), "max_ticks"),
+])
+def test_bad_world_input_raises(make, message):
+    with pytest.raises(ValueError, match=message):
+        make(tdp.GridMap(np.zeros((10, 10), bool)))
+
+
+def test_unreachable_goal_makes_the_robot_wait_then_go_when_it_opens():
+    occupied = np.zeros((12, 12), bool)
+    occupied[6, :] = True
+    grid = tdp.GridMap(occupied)
+    door = tdp.Obstacle(box=(6, 0, 7, 12), vanish_at=15)
+    free_grid = tdp.GridMap(np.zeros((12, 12), bool))
+    scenario = tdp.Scenario(free_grid, (0, 0), (11, 11), obstacles=[door], name="door")
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4), max_ticks=60)
+    assert episode.modes[:10] == ["wait"] * 10
+    assert episode.reached and episode.collisions == 0
+    assert grid.shape == (12, 12)
