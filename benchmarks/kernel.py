@@ -1,0 +1,131 @@
+"""Time of one all-layer DP iteration: tdp's Taichi engine next to a numpy implementation of the same update
+and next to the memory-bandwidth floor, for 1 and 2 threads.
+
+    python -m benchmarks.kernel [--quick]
+
+Each thread count runs in its own process (Taichi is initialised once per process); within a process the
+engine, numpy and the copy bandwidth are measured side by side, warm, as medians of repeats.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+from benchmarks.common import machine, median_time, print_table, write_json
+
+CASES = [(100, 25), (1024, 64), (1024, 256)]
+QUICK_CASES = [(100, 25), (256, 16)]  # a smoke run
+BYTES_PER_CELL_LAYER = 12  # read the value and the penalty, write the value: the floor of a streaming update
+
+
+def copy_bandwidth() -> float:
+    """Bytes per second that a large numpy copy moves (read + write)."""
+    src = np.ones(64 * 1024 * 1024 // 4 * 4, np.float32)  # 256 MiB
+    dst = np.empty_like(src)
+    seconds = median_time(lambda: np.copyto(dst, src), repeats=5)
+    return 2 * src.nbytes / seconds
+
+
+def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
+    from benchmarks.numpy_reference import NumpyDP
+    from tdp.engine import Engine
+    from tdp.nodes import place_nodes
+
+    lattice = place_nodes(np.zeros((size, size), bool), count=count)
+    occupied = np.random.default_rng(size).random((size, size)) < 0.1  # 10% random obstacles,
+    occupied[tuple(lattice.cells.T)] = False  # but every lattice node free: the node counts are exact
+    cap = 2.5 * lattice.spacing
+    goal = tuple(np.argwhere(~occupied)[0])
+    engine = Engine(occupied, goal, nodes=lattice.cells, node_cap=cap)
+    reference = NumpyDP(occupied, goal, lattice.cells, cap)
+    side = 2 * int(np.ceil(cap)) + 1
+    cell_layers = size * size + len(lattice.cells) * side * side
+    taichi_s = median_time(engine.step, repeats, warmup=3)
+    numpy_s = median_time(reference.step, max(2, repeats // 4), warmup=1)
+    floor_s = BYTES_PER_CELL_LAYER * cell_layers / bandwidth
+    return {"size": size, "nodes": len(lattice.cells), "window": side, "cell_layers": cell_layers,
+            "taichi_ms": taichi_s * 1e3, "numpy_ms": numpy_s * 1e3, "floor_ms": floor_s * 1e3,
+            "speedup_vs_numpy": numpy_s / taichi_s, "updates_per_s": cell_layers / taichi_s,
+            "ratio_to_floor": taichi_s / floor_s}
+
+
+def worker(cases: list[tuple[int, int]], repeats: int) -> None:
+    bandwidth = copy_bandwidth()
+    for size, count in cases:
+        result = measure(size, count, repeats, bandwidth)
+        result.update(threads=int(os.environ["TDP_THREADS"]), copy_gb_s=bandwidth / 1e9)
+        print("RESULT " + json.dumps(result), flush=True)
+
+
+def run_threads(threads: int, cases: list[tuple[int, int]], repeats: int) -> list[dict]:
+    env = dict(os.environ, TDP_THREADS=str(threads))
+    command = [sys.executable, "-m", "benchmarks.kernel", "--worker", "--repeats", str(repeats),
+               "--cases", json.dumps(cases)]
+    results = []
+    with subprocess.Popen(command, env=env, stdout=subprocess.PIPE, text=True) as process:
+        for line in process.stdout:
+            if line.startswith("RESULT "):
+                result = json.loads(line[7:])
+                results.append(result)
+                print(f"  {threads} thread(s), {result['size']}^2, {result['nodes']} nodes: "
+                      f"{result['taichi_ms']:.2f} ms (numpy {result['numpy_ms']:.1f} ms)", flush=True)
+    if process.returncode:
+        raise SystemExit(f"benchmark worker failed with exit code {process.returncode}")
+    return results
+
+
+def figure(results: list[dict], path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    labels = sorted({(r["size"], r["nodes"]) for r in results})
+    fig, ax = plt.subplots(figsize=(7, 4))
+    width = 0.2
+    series = [("numpy", 1, "numpy_ms"), ("taichi 1 thread", 1, "taichi_ms"), ("taichi 2 threads", 2, "taichi_ms"),
+              ("bandwidth floor", 2, "floor_ms")]
+    for k, (name, threads, key) in enumerate(series):
+        values = [next(r[key] for r in results if (r["size"], r["nodes"]) == label and r["threads"] == threads)
+                  for label in labels]
+        ax.bar(np.arange(len(labels)) + (k - 1.5) * width, values, width, label=name)
+    ax.set_xticks(range(len(labels)), [f"{s}x{s}, {n} nodes" for s, n in labels])
+    ax.set_yscale("log")
+    ax.set_ylabel("ms per all-layer iteration")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
+    parser.add_argument("--repeats", type=int, default=15)
+    parser.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--cases", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.worker:
+        worker([tuple(c) for c in json.loads(args.cases)], args.repeats)
+        return
+    cases = QUICK_CASES if args.quick else CASES
+    repeats = 5 if args.quick else args.repeats
+    print(f"kernel benchmark: {len(cases)} sizes x threads 1, 2 (median of {repeats}, warm)")
+    results = [r for threads in (1, 2) for r in run_threads(threads, cases, repeats)]
+    rows = [[f"{r['size']}x{r['size']}", str(r["nodes"]), str(r["threads"]), f"{r['taichi_ms']:.2f}",
+             f"{r['numpy_ms']:.1f}", f"{r['speedup_vs_numpy']:.1f}x", f"{r['updates_per_s'] / 1e9:.2f}",
+             f"{r['floor_ms']:.2f}", f"{r['ratio_to_floor']:.1f}"] for r in results]
+    print_table(["map", "nodes", "threads", "taichi ms", "numpy ms", "vs numpy", "G cell-layer/s",
+                 "floor ms", "x floor"], rows)
+    name = "kernel-quick" if args.quick else "kernel"
+    path = write_json(name, {"machine": machine(), "results": results})
+    figure(results, path.with_suffix(".png"))
+    print(f"wrote {path} and {path.with_suffix('.png')}")
+
+
+if __name__ == "__main__":
+    main()
