@@ -13,7 +13,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(PY) -m tdp plan tdp/maps/arena.map --start 7 1 --goal 46 47 --neighbourhood 8 --out demo-output
+	$(PY) -m sim compare --scenario sudden-blockage --updates 1 --out demo-output
 
 test: $(STAMP)
 	$(PY) -m pytest -q

@@ -38,7 +38,8 @@ class BlockageMonitor:
             return []
         before = self._history[0]
         watched = (before < self.vision) & np.isfinite(pairs)
-        blocked = watched & ((pairs - before >= self.rise) | (pairs >= self.vision))
+        rise = np.where(watched, pairs, 0.0) - np.where(watched, before, 0.0)
+        blocked = watched & ((rise >= self.rise) | (pairs >= self.vision))
         fresh = blocked & ~self._blocked
         self._blocked = blocked | blocked.T
         a, b = np.nonzero(np.triu(fresh, k=1))

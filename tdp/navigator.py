@@ -277,11 +277,16 @@ class Navigator:
             return graph.robot_goal
         return float(graph.robot_readings[vertex])
 
-    def _next_cell(self) -> tuple[int, int] | None:
+    def route(self, steps: int) -> list[tuple[int, int]]:
+        """Up to ``steps`` cells the robot would follow from R now: successors of the goal layer, or in backup mode
+        of the subgoal's layer (for a controller's look-ahead). Empty at the goal or while there is no route."""
         if self.robot == self.goal or self.state == "no-route":
-            return None
+            return []
         layer = 0
         if self.state == "backup" and self._subgoal < len(self.nodes):
             layer = 1 + self._subgoal
-        step = self.engine.trace(layer, self.robot, 1)
+        return self.engine.trace(layer, self.robot, steps)
+
+    def _next_cell(self) -> tuple[int, int] | None:
+        step = self.route(1)
         return step[0] if step else None

@@ -159,9 +159,14 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     edges = [(a, b) for a, b, _ in navigator._graph().edges()] if config.accelerating else []
     record = _run(scenario, navigator, config, limit, report)
 
-    oracle = _Oracle(start_grid, scenario.start, scenario.goal, config)
-    oracle_record = _run(scenario, oracle, config, limit)
+    oracle_record = oracle_run(scenario, config, limit)
     return _episode(scenario, config, navigator, record, oracle_record, nodes, edges)
+
+
+def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> dict:
+    """The oracle's run of ``scenario``: a dict with its ``length`` (cells), ``trajectory``, ``reached``, ``ticks``."""
+    start_grid = GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
+    return _run(scenario, _Oracle(start_grid, scenario.start, scenario.goal, config), config, max_ticks)
 
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:

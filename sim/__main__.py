@@ -1,0 +1,107 @@
+"""PyBullet runs of tdp's scenarios (headless by default).
+
+    python -m sim list
+    python -m sim run --scenario NAME [--no-accelerating] [--updates K] [--gui] --out DIR
+    python -m sim compare --scenario NAME [--updates K] --out DIR
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+
+def _config(args: argparse.Namespace, accelerating: bool):
+    import tdp
+
+    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates)
+
+
+def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str) -> dict:
+    import tdp
+
+    from .episode import run_episode
+    from .render import save_trace_figure
+
+    scenario = tdp.scenarios.get(args.scenario)
+    kind = "accelerating nodes" if accelerating else "plain DP"
+    print(f"running {scenario.name} in PyBullet ({kind}, K = {args.updates})", flush=True)
+    metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"{stem}.json").write_text(json.dumps(metrics, indent=1))
+    metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
+    return metrics
+
+
+def _summary(metrics: dict) -> str:
+    return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
+            f"oracle {metrics['oracle_length_m']:.2f} m, ratio {metrics['ratio']:.3f}; contacts {metrics['contacts']}, "
+            f"min clearance {metrics['min_clearance_m']:.3f} m; planner "
+            f"{metrics['planner_ms_per_tick']['mean']:.1f} ms/tick; wall {metrics['wall_s']:.1f} s")
+
+
+def run(args: argparse.Namespace) -> int:
+    metrics = _run_and_save(args, not args.no_accelerating, Path(args.out), "metrics")
+    print(_summary(metrics))
+    print(f"wrote {Path(args.out) / 'metrics.json'} and {metrics['figure']}")
+    return 0
+
+
+def compare(args: argparse.Namespace) -> int:
+    out = Path(args.out)
+    rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind)) for kind in ("accelerating", "plain-dp")]
+    print(f"\n{args.scenario}, K = {args.updates}, PyBullet DIRECT")
+    print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | planner ms/tick |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for kind, m in rows:
+        print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {m['oracle_length_m']:.2f} "
+              f"| {m['ratio']:.3f} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
+              f"{m['planner_ms_per_tick']['mean']:.1f} |")
+    print("figures: " + ", ".join(m["figure"] for _, m in rows))
+    return 0
+
+
+def list_scenarios(args: argparse.Namespace) -> int:
+    import tdp
+
+    for name in tdp.scenarios.names():
+        print(f"{name:18s} {tdp.scenarios.get(name).description}")
+    return 0
+
+
+def _positive(text: str) -> int:
+    value = int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a positive integer, got {text}")
+    return value
+
+
+def parser() -> argparse.ArgumentParser:
+    main = argparse.ArgumentParser(prog="python -m sim", description=__doc__,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+    commands = main.add_subparsers(dest="command", required=True)
+    commands.add_parser("list", help="list the scenarios").set_defaults(run=list_scenarios)
+    for name, function in (("run", run), ("compare", compare)):
+        sub = commands.add_parser(name, help=f"{name} a scenario in PyBullet")
+        sub.add_argument("--scenario", required=True)
+        sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
+        sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
+        if name == "run":
+            sub.add_argument("--no-accelerating", action="store_true", help="plain DP")
+            sub.add_argument("--gui", action="store_true", help="open the PyBullet window (needs a display)")
+        sub.set_defaults(run=function)
+    return main
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except (ValueError, FileNotFoundError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

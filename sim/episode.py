@@ -1,0 +1,228 @@
+"""A tdp.Scenario run in PyBullet: tdp plans on the rasterised world, the robot drives by its wheels."""
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import pybullet as p
+
+import tdp
+from tdp.simulate import oracle_run
+
+from .control import PurePursuit
+from .robot import RADIUS_M, DiffDriveRobot
+from .world import SimWorld, cell_centres
+
+
+@dataclass(frozen=True)
+class SimConfig:
+    """Physical scale of a run. One scenario tick lasts ``tick_s``: the robot (``max_speed`` m/s) crosses about one
+    ``cell_m`` cell per tick, so obstacles at 0.5 cells per tick move at half its speed, as in the paper. Obstacles
+    grow by the robot's radius plus ``margin_m``; moving boxes are also swept along their measured velocity over
+    ``horizon_s`` seconds, so that the robot keeps out of their way between planner ticks."""
+
+    cell_m: float = 0.1
+    tick_s: float = 0.2
+    physics_hz: int = 240
+    control_hz: int = 20
+    margin_m: float = 0.1
+    horizon_s: float = 1.0
+    goal_tolerance_m: float = 0.1
+    max_speed: float = 0.5
+
+    @property
+    def inflate_m(self) -> float:
+        """Obstacles grow by the robot's radius plus the margin before planning."""
+        return RADIUS_M + self.margin_m
+
+    def __post_init__(self):
+        for name in ("cell_m", "tick_s", "margin_m", "horizon_s", "goal_tolerance_m", "max_speed"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+        if self.physics_hz < self.control_hz or self.physics_hz % self.control_hz:
+            raise ValueError("physics_hz must be a multiple of control_hz")
+
+
+def connect(gui: bool) -> int:
+    """A PyBullet client: DIRECT (headless) unless ``gui``, which needs a display."""
+    if gui and not os.environ.get("DISPLAY"):
+        raise ValueError("--gui needs a display, and DISPLAY is not set; run headless without --gui")
+    client = p.connect(p.GUI if gui else p.DIRECT)
+    if client < 0:
+        raise ValueError("could not open a PyBullet GUI window")
+    p.setGravity(0, 0, -9.81, physicsClientId=client)
+    return client
+
+
+def inflated_scenario(scenario: tdp.Scenario, cells: int) -> tdp.Scenario:
+    """The scenario as the planner sees it: static map inflated by a disk, boxes grown by ``cells`` on each side."""
+    boxes = [tdp.Obstacle(box=(o.box[0] - cells, o.box[1] - cells, o.box[2] + cells, o.box[3] + cells),
+                          waypoints=[(r - cells, c - cells) for r, c in o.waypoints], speed=o.speed,
+                          appear_at=o.appear_at, vanish_at=o.vanish_at) for o in scenario.obstacles]
+    return tdp.Scenario(scenario.grid.inflate(cells), scenario.start, scenario.goal, obstacles=boxes,
+                        target_waypoints=scenario.target_waypoints, target_speed=scenario.target_speed,
+                        name=scenario.name, max_ticks=scenario.max_ticks)
+
+
+class _Run:
+    """State of one episode: world, robot, navigator, controller and the record."""
+
+    def __init__(self, scenario: tdp.Scenario, config: tdp.NavigatorConfig, sim: SimConfig, client: int):
+        self.scenario, self.config, self.sim, self.client = scenario, config, sim, client
+        p.setTimeStep(1.0 / sim.physics_hz, physicsClientId=client)
+        self.world = SimWorld(client, scenario, sim.cell_m, sim.tick_s)
+        self.grid = self.world.grid
+        self.static = scenario.grid.inflate(sim.inflate_m / sim.cell_m).occupied
+        self.mask = self.static | self.world.moving_footprints(sim.inflate_m, 0.0, sim.horizon_s)
+        for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
+            if self.mask[cell]:
+                raise ValueError(f"{name} {cell} is within {sim.inflate_m} m of an obstacle: no room for the robot")
+        self.navigator = tdp.Navigator(tdp.GridMap(self.mask), scenario.start, scenario.goal, config)
+        self.navigator.setup()
+        x, y = self.grid.cell_to_world(*scenario.start)
+        gx, gy = self.grid.cell_to_world(*scenario.goal)
+        self.robot = DiffDriveRobot(client, x, y, math.atan2(gy - y, gx - x))
+        self.controller = PurePursuit(max_v=sim.max_speed)
+        self.target = scenario.goal
+        self.trace: list[tuple[float, float, str]] = [(x, y, "dp")]
+        self.length_m = 0.0
+        self.contact_steps = 0
+        self.min_clearance = math.inf
+        self.planner_s: list[float] = []
+        self.detections: list[dict] = []
+        self.modes: list[str] = []
+        self.turn_point = self.switch_back_point = None
+
+    def robot_cell(self) -> tuple[int, int]:
+        x, y, _ = self.robot.pose()
+        r, c = self.grid.world_to_cell(x, y)
+        return min(max(r, 0), self.grid.shape[0] - 1), min(max(c, 0), self.grid.shape[1] - 1)
+
+    def plan(self, tick: int) -> tdp.navigator.TickResult:
+        """Rasterise, send the changed cells, move the target, run the planner's tick."""
+        now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.sim.tick_s,
+                                                         self.sim.horizon_s)
+        changed = np.argwhere(now != self.mask)
+        if len(changed):
+            self.navigator.update_map(changed, now[tuple(changed.T)])
+        self.mask = now
+        target = self.scenario.target(tick)
+        if target != self.target:
+            self.target = target
+            self.navigator.set_goal(target)
+        self.navigator.move_robot(self.robot_cell())
+        began = time.perf_counter()
+        result = self.navigator.tick()
+        self.planner_s.append(time.perf_counter() - began)
+        for d in result.detections:
+            self.detections.append({"tick": tick, "iteration": d.iteration, "pair": list(d.pair),
+                                    "relevant": d.relevant})
+            if d.relevant and self.turn_point is None:
+                self.turn_point = self.robot.pose()[:2]
+        if result.switched_back and self.switch_back_point is None:
+            self.switch_back_point = self.robot.pose()[:2]
+        return result
+
+    def drive(self, tick: int, result) -> None:
+        """Physics for one tick, steering at control_hz along the planner's route."""
+        sim = self.sim
+        route = [self.grid.cell_to_world(*cell) for cell in self.navigator.route(12)]
+        escape = self._escape()
+        if escape is not None:
+            route = [escape]
+        elif not route or self.robot_cell() == self.target:
+            route = [self.grid.cell_to_world(*self.target)]
+        steps_per_control = sim.physics_hz // sim.control_hz
+        control_dt = 1.0 / sim.control_hz
+        steps = round(sim.tick_s * sim.physics_hz)
+        for step in range(steps):
+            if step % steps_per_control == 0:
+                pose = self.robot.pose()
+                if result.mode == "wait" and escape is None:
+                    v, w = self.controller.stop(control_dt)
+                else:
+                    v, w = self.controller.steer(pose, route, control_dt)
+                self.robot.command(v, w)
+                self._measure_clearance()
+            self.world.update(((tick - 1) * steps + step + 1) / sim.physics_hz)
+            before = self.robot.pose()
+            p.stepSimulation(physicsClientId=self.client)
+            after = self.robot.pose()
+            self.length_m += math.hypot(after[0] - before[0], after[1] - before[1])
+            self._count_contacts()
+        x, y, _ = self.robot.pose()
+        self.trace.append((x, y, result.mode))
+        self.modes.append(result.mode)
+
+    def _escape(self) -> tuple[float, float] | None:
+        """Inside the inflated obstacles (a box came too close) the planner has no successor: head for the
+        nearest free cell instead of waiting to be hit. None when the robot's cell is free."""
+        if not self.mask[self.robot_cell()]:
+            return None
+        if self.mask.all():
+            return None
+        x, y, _ = self.robot.pose()
+        cx, cy = cell_centres(self.grid)
+        distance = np.where(self.mask, np.inf, np.hypot(cx - x, cy - y))
+        nearest = np.unravel_index(np.argmin(distance), distance.shape)
+        return float(cx[nearest]), float(cy[nearest])
+
+    def _count_contacts(self) -> None:
+        obstacles = set(self.world.obstacle_bodies())
+        touching = any(c[2] in obstacles for c in p.getContactPoints(bodyA=self.robot.body,
+                                                                     physicsClientId=self.client))
+        self.contact_steps += int(touching)
+
+    def _measure_clearance(self) -> None:
+        for body in self.world.obstacle_bodies():
+            for point in p.getClosestPoints(self.robot.body, body, 1.0, physicsClientId=self.client):
+                self.min_clearance = min(self.min_clearance, point[8])
+
+    def reached(self) -> bool:
+        x, y, _ = self.robot.pose()
+        gx, gy = self.grid.cell_to_world(*self.target)
+        return math.hypot(gx - x, gy - y) <= self.sim.goal_tolerance_m
+
+
+def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.NavigatorConfig(),
+                sim: SimConfig = SimConfig(), gui: bool = False, progress: bool = False) -> dict:
+    """Run ``scenario`` in PyBullet and return its metrics (lengths in metres, times in seconds)."""
+    client = connect(gui)
+    try:
+        run = _Run(scenario, config, sim, client)
+        max_ticks = scenario.max_ticks or 4 * sum(scenario.grid.shape)
+        tick = 0
+        began = time.perf_counter()
+        while tick < max_ticks and not run.reached():
+            tick += 1
+            result = run.plan(tick)
+            run.drive(tick, result)
+            if progress and tick % 25 == 0:
+                x, y, _ = run.robot.pose()
+                print(f"  [{scenario.name}] t = {tick * sim.tick_s:5.1f} s: robot at ({x:.2f}, {y:.2f}) m, "
+                      f"{result.mode}", file=sys.stderr, flush=True)
+        wall_s = time.perf_counter() - began
+        reached = run.reached()
+    finally:
+        p.disconnect(physicsClientId=client)
+    cells = math.ceil(sim.inflate_m / sim.cell_m)
+    oracle = oracle_run(inflated_scenario(scenario, cells), config, max_ticks)
+    oracle_m = oracle["length"] * sim.cell_m
+    planner_ms = np.array(run.planner_s) * 1e3 if run.planner_s else np.zeros(1)
+    return {
+        "scenario": scenario.name, "accelerating": config.accelerating, "updates_per_move": config.updates_per_move,
+        "reached": reached, "time_s": tick * sim.tick_s, "wall_s": wall_s, "ticks": tick,
+        "path_length_m": run.length_m, "oracle_length_m": oracle_m,
+        "ratio": run.length_m / oracle_m if oracle_m > 0 else 1.0, "contacts": run.contact_steps,
+        "min_clearance_m": run.min_clearance, "detections": run.detections,
+        "planner_ms_per_tick": {"mean": float(planner_ms.mean()), "p95": float(np.percentile(planner_ms, 95)),
+                                "max": float(planner_ms.max())},
+        "trace": run.trace, "modes": run.modes, "nodes": run.navigator.nodes.tolist(),
+        "turn_point": run.turn_point, "switch_back_point": run.switch_back_point,
+        "oracle_trajectory": oracle["trajectory"], "sim": asdict(sim), "config": config.to_dict(),
+    }

@@ -1,0 +1,57 @@
+"""Top-down figure of a PyBullet episode: map, nodes, the robot's trace coloured by mode, obstacles' traces."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+import tdp
+from tdp.plot import MODE_COLOURS, _box_patch, _pyplot, draw_map
+
+
+def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
+    """Write a PNG of the run in ``metrics`` (from :func:`sim.episode.run_episode`); returns the file written."""
+    plt = _pyplot()
+    cell, rows = metrics["sim"]["cell_m"], scenario.grid.shape[0]
+
+    def to_cells(x, y):
+        return np.asarray(x) / cell - 0.5, rows - np.asarray(y) / cell - 0.5
+
+    fig, ax = plt.subplots(figsize=(7, 7.4))
+    draw_map(ax, scenario.grid.occupied)
+    nodes = np.array(metrics["nodes"]).reshape(-1, 2)
+    if len(nodes):
+        ax.plot(nodes[:, 1], nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=6, label="accelerating nodes")
+    for obstacle in scenario.obstacles:
+        ticks = range(obstacle.appear_at or 0, min(metrics["ticks"], obstacle.vanish_at or metrics["ticks"]) + 1)
+        corners = np.array([obstacle.corner(t) for t in ticks])
+        r0, c0, r1, c1 = obstacle.box
+        ax.plot(corners[:, 1] + (c1 - c0) / 2 - 0.5, corners[:, 0] + (r1 - r0) / 2 - 0.5, "-", color="tab:brown",
+                lw=1, alpha=0.7)
+        ax.add_patch(_box_patch(plt, obstacle.footprint(ticks[0]), fill=False, ec="tab:brown", ls="--"))
+        ax.add_patch(_box_patch(plt, obstacle.footprint(ticks[-1]), color="tab:brown", alpha=0.6))
+    oracle = np.array(metrics["oracle_trajectory"])
+    ax.plot(oracle[:, 1], oracle[:, 0], ":", color="0.35", lw=1.3, label="oracle (grid)")
+    trace = metrics["trace"]
+    for (x0, y0, _), (x1, y1, mode) in zip(trace, trace[1:]):
+        cols, rows_ = to_cells([x0, x1], [y0, y1])
+        ax.plot(cols, rows_, "-", color=MODE_COLOURS[mode], lw=2.2)
+    for mode in dict.fromkeys(metrics["modes"]):
+        ax.plot([], [], "-", color=MODE_COLOURS[mode], lw=2.2, label=f"robot: {mode}")
+    for name in ("turn_point", "switch_back_point"):
+        if metrics[name] is not None:
+            c, r = to_cells(*metrics[name])
+            ax.plot(c, r, "kx", ms=9, mew=2)
+            ax.annotate("A" if name == "turn_point" else "B", (c, r), xytext=(6, -6), textcoords="offset points",
+                        fontsize=13, weight="bold")
+    kind = "accelerating nodes" if metrics["accelerating"] else "plain DP"
+    ax.set_title(f"PyBullet {metrics['scenario']}, {kind}, K = {metrics['updates_per_move']}: "
+                 f"{metrics['path_length_m']:.2f} m (oracle {metrics['oracle_length_m']:.2f} m), "
+                 f"contacts {metrics['contacts']}", fontsize=9)
+    ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out

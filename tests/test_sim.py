@@ -1,0 +1,126 @@
+"""PyBullet layer in DIRECT mode: wheel kinematics, rasterising, and every scenario end to end."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pybullet as p
+import pytest
+
+import tdp
+from sim.episode import SimConfig, connect, run_episode
+from sim.robot import DiffDriveRobot, wheel_speeds
+from sim.world import SimWorld, box_cells, rectangles
+
+
+@pytest.fixture
+def client():
+    client = connect(gui=False)
+    p.setTimeStep(1 / 240, physicsClientId=client)
+    floor = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
+    p.createMultiBody(0, floor, physicsClientId=client)
+    yield client
+    p.disconnect(physicsClientId=client)
+
+
+def drive(client, robot, v, w, seconds):
+    robot.command(v, w)
+    for _ in range(int(seconds * 240)):
+        p.stepSimulation(physicsClientId=client)
+
+
+@pytest.mark.parametrize("v, w", [(0.3, 0.0), (0.0, 1.5), (0.2, 0.8), (-0.2, 0.0)])
+def test_commanded_wheel_speeds_give_the_expected_body_motion(client, v, w):
+    robot = DiffDriveRobot(client, 0.0, 0.0, 0.3)
+    drive(client, robot, v, w, 1.0)  # settle
+    x0, y0, yaw0 = robot.pose()
+    drive(client, robot, v, w, 1.0)
+    x1, y1, yaw1 = robot.pose()
+    measured_w = math.atan2(math.sin(yaw1 - yaw0), math.cos(yaw1 - yaw0))
+    assert measured_w == pytest.approx(w, abs=0.08 * max(1.0, abs(w)))
+    chord = math.hypot(x1 - x0, y1 - y0)
+    expected_chord = abs(v) if w == 0 else abs(2 * v / w * math.sin(w / 2))
+    assert chord == pytest.approx(expected_chord, abs=0.03)
+    assert robot.velocity()[0] == pytest.approx(v, abs=0.03)
+
+
+def test_wheel_speed_formula():
+    left, right = wheel_speeds(0.5, 0.0)
+    assert left == right == pytest.approx(10.0)  # 0.5 m/s on 0.05 m wheels
+    left, right = wheel_speeds(0.0, 1.0)
+    assert right == -left == pytest.approx(0.12 / 0.05)
+
+
+def test_a_robot_left_alone_stays_put(client):
+    robot = DiffDriveRobot(client, 1.0, 2.0, 0.0)
+    drive(client, robot, 0.0, 0.0, 2.0)
+    x, y, yaw = robot.pose()
+    assert math.hypot(x - 1.0, y - 2.0) < 0.005 and abs(yaw) < 0.01
+
+
+def test_box_rasterises_to_the_expected_cells_with_inflation():
+    grid = tdp.GridMap(np.zeros((10, 10), bool), resolution=0.1)  # cell (r, c) centre: ((c + .5)/10, (9.5 - r)/10)
+    cells = box_cells(grid, (0.30, 0.30, 0.50, 0.40), 0.0)
+    assert sorted(map(tuple, np.argwhere(cells))) == [(6, 3), (6, 4)]  # centres (0.35, 0.35), (0.45, 0.35)
+    inflated = box_cells(grid, (0.30, 0.30, 0.50, 0.40), 0.1)
+    expected = set()
+    for r in range(10):
+        for c in range(10):
+            x, y = (c + 0.5) / 10, (9.5 - r) / 10
+            dx, dy = max(0.30 - x, 0, x - 0.50), max(0.30 - y, 0, y - 0.40)
+            if dx * dx + dy * dy <= 0.01 + 1e-12:
+                expected.add((r, c))
+    assert set(map(tuple, np.argwhere(inflated))) == expected
+    assert len(expected) == 12
+
+
+def test_moving_box_footprint_comes_from_its_body(client):
+    grid = tdp.GridMap(np.zeros((20, 20), bool))
+    box = tdp.Obstacle(box=(4, 6, 7, 10), waypoints=[(4, 16)], speed=1.0)
+    scenario = tdp.Scenario(grid, (19, 0), (19, 19), obstacles=[box])
+    world = SimWorld(client, scenario, cell_m=0.1, tick_s=0.5)
+    np.testing.assert_array_equal(world.moving_footprints(0.0, 0.0), scenario.occupancy(0))
+    world.update(2.0)  # 4 ticks at 1 cell per tick
+    np.testing.assert_array_equal(world.moving_footprints(0.0, 2.0), scenario.occupancy(4))
+    world.update(2.5)  # measured 0.2 m/s to the right: swept 0.5 s ahead covers one more tick's cells
+    np.testing.assert_array_equal(world.moving_footprints(0.0, 2.5, horizon_s=0.5),
+                                  scenario.occupancy(5) | scenario.occupancy(6))
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_rectangles_cover_exactly_the_occupied_cells(seed):
+    occupied = np.random.default_rng(seed).random((15, 17)) < 0.4
+    cover = np.zeros_like(occupied, dtype=int)
+    for r0, c0, r1, c1 in rectangles(occupied):
+        cover[r0:r1, c0:c1] += 1
+    np.testing.assert_array_equal(cover, occupied.astype(int))
+
+
+@pytest.mark.parametrize("name", tdp.scenarios.names())
+def test_every_scenario_reaches_the_goal_in_pybullet_without_contact(name):
+    metrics = run_episode(tdp.scenarios.get(name))
+    assert metrics["reached"]
+    assert metrics["contacts"] == 0
+    assert metrics["min_clearance_m"] > 0
+    assert metrics["time_s"] <= tdp.scenarios.get(name).max_ticks * SimConfig().tick_s
+    assert 0.8 < metrics["ratio"] < 1.3
+
+
+def test_start_without_room_for_the_robot_is_a_clear_error():
+    occupied = np.zeros((20, 20), bool)
+    occupied[:, 3] = True
+    scenario = tdp.Scenario(tdp.GridMap(occupied), (5, 4), (10, 15))
+    with pytest.raises(ValueError, match="no room for the robot"):
+        run_episode(scenario)
+
+
+@pytest.mark.parametrize("args, message", [
+    (["run", "--scenario", "nowhere"], "unknown scenario"),
+    (["run", "--scenario", "static", "--gui"], "needs a display"),
+    (["run", "--scenario", "static", "--updates", "0"], "positive integer"),
+])
+def test_cli_errors_are_one_line(args, message, monkeypatch):
+    env = {"PATH": "/usr/bin:/bin", "HOME": "/tmp"}
+    done = subprocess.run([sys.executable, "-m", "sim", *args], capture_output=True, text=True, env=env)
+    assert done.returncode == 2
+    assert message in done.stderr and "Traceback" not in done.stderr
