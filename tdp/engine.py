@@ -24,6 +24,8 @@ from . import stencil
 LANES = 16
 #: Padding around every array: the stencil's reach, so kernels never test bounds.
 PAD = stencil.REACH
+#: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
+TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 
 _initialised = False
@@ -105,15 +107,62 @@ def _updated(src: ti.template(), pen: ti.template(), g, i, j, sr, sc, cap, lanes
 # ----------------------------------------------------------------------------------------------------------- kernels
 @ti.kernel
 def _relax(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
-           sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
-           corner_cutting: ti.template()) -> ti.i32:
-    """One synchronous (Jacobi) iteration src -> dst of every layer in the arrays; returns the changed cells."""
-    changed = 0
-    for g, i, j in ti.ndrange(src.shape[0], (PAD, src.shape[1] - PAD), (PAD, src.shape[2] - PAD)):
-        new = _updated(src, pen, g, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
-        changed += _differs(new, src[g, i, j], lanes)
-        dst[g, i, j] = new
-    return changed
+           stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
+           sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
+           corner_cutting: ti.template()):
+    """One synchronous (Jacobi) iteration src -> dst of the active tiles (stamp >= ``tick``).
+
+    A changed cell stamps its tile, and the neighbouring tiles within the stencil's reach, ``tick + 1``: only
+    they can change at the next iteration. Inactive tiles hold equal values in both buffers, so skipping them is
+    exact. ``counts[0]`` receives the number of changed cells.
+    """
+    counts[0] = 0
+    rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
+    for g, ta, tb in stamps:
+        if stamps[g, ta, tb] >= tick:
+            changed = 0
+            for u, v in ti.ndrange(TILE, TILE):
+                r, c = ta * TILE + u, tb * TILE + v
+                if r < rows and c < cols:
+                    new = _updated(src, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                    if _differs(new, src[g, r + PAD, c + PAD], lanes):
+                        changed += 1
+                        _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+                    dst[g, r + PAD, c + PAD] = new
+            if changed:
+                ti.atomic_add(counts[0], changed)
+
+
+@ti.func
+def _stamp_around(stamps: ti.template(), g, ta, tb, u, v, value):
+    """Stamp tile (ta, tb) and the neighbours that cell (u, v) of it reaches with the stencil."""
+    for da in ti.static(range(-1, 2)):
+        for db in ti.static(range(-1, 2)):
+            near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
+            near_b = db == 0 or (db < 0 and v < PAD) or (db > 0 and v >= TILE - PAD)
+            a, b = ta + da, tb + db
+            if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
+                stamps[g, a, b] = value
+
+
+@ti.kernel
+def _stamp_cells(stamps: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2),
+                 origins: ti.types.ndarray(ndim=2), lanes: ti.template(), rows: ti.i32, cols: ti.i32, tick: ti.i32):
+    """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach.
+
+    ``origins`` (one per lane) maps grid to layer coordinates; a layer of rows x cols cells sees a cell up to PAD
+    outside it.
+    """
+    for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
+        for lane in ti.static(range(max(lanes, 1))):
+            a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
+            b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
+            if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
+                for da in ti.static(range(-PAD, PAD + 1, PAD)):
+                    for db in ti.static(range(-PAD, PAD + 1, PAD)):
+                        ta, tb = (a + da) // TILE, (b + db) // TILE
+                        if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
+                            stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
 
 
 @ti.kernel
@@ -207,11 +256,12 @@ def _successor_move(arr: ti.template(), pen: ti.template(), g, lane, i, j, sr, s
 @ti.kernel
 def _trace(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), g: ti.i32, lane: ti.i32, i0: ti.i32,
            j0: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, out: ti.types.ndarray(ndim=2), lanes: ti.template(),
-           neighbourhood: ti.template(), corner_cutting: ti.template()) -> ti.i32:
-    """Follow successors from (i0, j0) (padded coordinates) for at most out.shape[0] steps; returns the steps."""
+           neighbourhood: ti.template(), corner_cutting: ti.template()):
+    """Follow successors from (i0, j0) (padded coordinates) for at most out.shape[0] - 1 steps, into out[1:];
+    out[0, 0] receives the number of steps."""
     i, j, steps = i0, j0, 0
     ti.loop_config(serialize=True)
-    for _ in range(out.shape[0]):
+    for _ in range(out.shape[0] - 1):
         move = -1
         if PAD <= i < arr.shape[1] - PAD and PAD <= j < arr.shape[2] - PAD:
             move = _successor_move(arr, pen, g, lane, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
@@ -220,12 +270,12 @@ def _trace(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), g: ti.i
                 if move == index:
                     i += m.dr
                     j += m.dc
-            out[steps, 0] = i
-            out[steps, 1] = j
+            out[steps + 1, 0] = i
+            out[steps + 1, 1] = j
             steps += 1
         else:
             break
-    return steps
+    out[0, 0] = steps
 
 
 @ti.kernel
@@ -253,15 +303,21 @@ def _sample_windows(arr: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndi
 
 # ------------------------------------------------------------------------------------------------------- host class
 class _Layers:
-    """Two buffers (Jacobi) and the penalties of one kind of layer: the goal (scalar) or the node windows (vector)."""
+    """One kind of layer, the goal's (scalar) or the node windows (``lanes`` packed per cell): two buffers (Jacobi),
+    penalties, the origin of each lane in grid coordinates, and the active-tile flags."""
 
-    def __init__(self, groups: int, rows: int, cols: int, lanes: int):
+    def __init__(self, groups: int, rows: int, cols: int, lanes: int, origins: np.ndarray):
         init_taichi()
-        self.lanes = lanes
+        self.lanes, self.rows, self.cols = lanes, rows, cols
         shape = (groups, rows + 2 * PAD, cols + 2 * PAD)
         self.buffers = [self._array(shape), self._array(shape)]
         self.pen = self._array(shape)
         self.current = 0
+        self.origins = _device(origins.astype(np.int32))
+        self.stamps = ti.ndarray(ti.i32, (groups, -(-rows // TILE), -(-cols // TILE)))
+        self.tick = 0  # number of the next iteration, never reset: stamps compare against it
+        self.counts = ti.ndarray(ti.i32, (1,))
+        self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
         if self.lanes:
@@ -272,15 +328,37 @@ class _Layers:
     def values(self):
         return self.buffers[self.current]
 
-    def swap(self) -> None:
+    def activate_all(self) -> None:
+        self.stamps.fill(self.tick)
+
+    def deactivate_all(self) -> None:
+        self.stamps.fill(-1)
+
+    def activate_cells(self, cells: np.ndarray) -> None:
+        """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
+        _stamp_cells(self.stamps, cells, self.origins, self.lanes, self.rows, self.cols, self.tick)
+
+    def relax(self, sr: int, sc: int, cap: float, neighbourhood: int, corner_cutting: bool) -> None:
+        """One Jacobi iteration over the active tiles; ``counts[0]`` then holds the changed cells."""
+        _relax(self.values, self.buffers[1 - self.current], self.pen, self.stamps, self.tick, self.counts, sr, sc,
+               cap, self.lanes, neighbourhood, corner_cutting)
         self.current = 1 - self.current
+        self.tick += 1
+
+
+def _device(array: np.ndarray):
+    """A Taichi ndarray holding a copy of an int32 or float32 numpy array."""
+    out = ti.ndarray(ti.i32 if array.dtype == np.int32 else ti.f32, array.shape)
+    out.from_numpy(np.ascontiguousarray(array))
+    return out
 
 
 class Engine:
     """All layers of one DP: the goal layer (cap ``goal_cap``) and one windowed layer per node (cap ``node_cap``).
 
     Cells are ``(row, col)``; distances are in cells. ``occupied`` is a bool (H, W) array, True = obstacle.
-    Map edits and goal moves take effect at the next iteration; nothing is recompiled.
+    Map edits and goal moves take effect at the next iteration; nothing is recompiled. Each iteration relaxes
+    only the tiles whose inputs changed (DESIGN 4, active tiles); :meth:`activate_all` forces a dense one.
     """
 
     def __init__(self, occupied: np.ndarray, goal: tuple[int, int], *, goal_cap: float = math.inf,
@@ -296,7 +374,7 @@ class Engine:
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
 
-        self._goal = _Layers(1, self.rows, self.cols, 0)
+        self._goal = _Layers(1, self.rows, self.cols, 0, np.zeros((1, 2)))
         self._goal.pen.from_numpy(self._padded_penalties())
         self._windows = None
         if len(self.nodes):
@@ -305,10 +383,8 @@ class Engine:
             groups = -(-len(self.nodes) // LANES)
             origins = np.full((groups * LANES, 2), _FAR, np.int32)
             origins[: len(self.nodes)] = self.nodes - self.radius
-            self._origins = ti.ndarray(ti.i32, origins.shape)
-            self._origins.from_numpy(origins)
-            self._windows = _Layers(groups, side, side, LANES)
-            _gather_window_pen(self._goal.pen, self._windows.pen, self._origins, LANES)
+            self._windows = _Layers(groups, side, side, LANES, origins)
+            _gather_window_pen(self._goal.pen, self._windows.pen, self._windows.origins, LANES)
         self.reset()
 
     # -- state -------------------------------------------------------------------------------------------------
@@ -329,19 +405,24 @@ class Engine:
         for layers, sr, sc, cap in self._kinds():
             for buffer in layers.buffers:
                 _reset(buffer, layers.pen, sr, sc, cap, layers.lanes)
+            layers.activate_all()
         self.iterations = 0
 
-    def step(self, k: int = 1) -> int:
-        """Run k synchronous iterations of every layer; return the cells changed by the last one."""
-        changed = 0
+    def activate_all(self) -> None:
+        """Make the next iteration relax every tile (a dense iteration; the result is the same)."""
+        for layers, _, _, _ in self._kinds():
+            layers.activate_all()
+
+    def step(self, k: int = 1) -> None:
+        """Run k synchronous iterations of every layer (only their active tiles)."""
         for _ in range(k):
-            changed = 0
             for layers, sr, sc, cap in self._kinds():
-                changed += _relax(layers.values, layers.buffers[1 - layers.current], layers.pen, sr, sc, cap,
-                                  layers.lanes, self.neighbourhood, self.corner_cutting)
-                layers.swap()
+                layers.relax(sr, sc, cap, self.neighbourhood, self.corner_cutting)
             self.iterations += 1
-        return changed
+
+    def changed(self) -> int:
+        """Cells changed by the last iteration, all layers together."""
+        return int(sum(layers.counts[0] for layers, _, _, _ in self._kinds()))
 
     def converge(self, max_sweeps: int | None = None) -> int:
         """Relax from the initial state to the fixed point with in-place sweeps; return the sweeps made.
@@ -352,17 +433,18 @@ class Engine:
         self.reset()
         sweeps = 0
         orders = ((0, 0), (1, 1), (0, 1), (1, 0))
-        while max_sweeps is None or sweeps < max_sweeps:
+        changed = 1
+        while changed and (max_sweeps is None or sweeps < max_sweeps):
             flip_rows, flip_cols = orders[sweeps % 4]
             changed = 0
             for layers, sr, sc, cap in self._kinds():
                 changed += _sweep(layers.values, layers.pen, sr, sc, cap, flip_rows, flip_cols, layers.lanes,
                                   self.neighbourhood, self.corner_cutting)
             sweeps += 1
-            if changed == 0:
-                break
         for layers, _, _, _ in self._kinds():
             layers.buffers[1 - layers.current].copy_from(layers.values)
+            if not changed:
+                layers.deactivate_all()
         return sweeps
 
     # -- edits -------------------------------------------------------------------------------------------------
@@ -373,17 +455,18 @@ class Engine:
             return
         occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
-        cells_nd = ti.ndarray(ti.i32, cells.shape)
-        cells_nd.from_numpy(np.ascontiguousarray(cells))
-        values_nd = ti.ndarray(ti.f32, (len(cells),))
-        values_nd.from_numpy(np.where(occupied, np.inf, 0.0).astype(np.float32))
-        _paint_grid(self._goal.pen, cells_nd, values_nd)
+        values = np.where(occupied, np.inf, 0.0).astype(np.float32)
+        _paint_grid(self._goal.pen, cells, values)
         if self._windows is not None:
-            _paint_windows(self._windows.pen, self._origins, cells_nd, values_nd, LANES)
+            _paint_windows(self._windows.pen, self._windows.origins, cells, values, LANES)
+        for layers, _, _, _ in self._kinds():
+            layers.activate_cells(cells)
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the goal layer's source; the values propagate from it from the next iteration on."""
+        moved = np.array([self.goal, goal], np.int32)
         self.goal = (int(goal[0]), int(goal[1]))
+        self._goal.activate_cells(moved)
 
     # -- reading -----------------------------------------------------------------------------------------------
     def goal_distances(self) -> np.ndarray:
@@ -402,14 +485,12 @@ class Engine:
 
     def sample(self, cells: np.ndarray) -> np.ndarray:
         """Every layer at each of ``cells`` (n, 2): a float32 (n, 1 + nodes) array, column 0 the goal layer."""
-        cells = np.asarray(cells, np.int32).reshape(-1, 2)
-        cells_nd = ti.ndarray(ti.i32, cells.shape)
-        cells_nd.from_numpy(np.ascontiguousarray(cells))
-        out = ti.ndarray(ti.f32, (len(cells), 1 + len(self.nodes)))
-        _sample_goal(self._goal.values, cells_nd, out)
+        cells = np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+        out = np.empty((len(cells), 1 + len(self.nodes)), np.float32)
+        _sample_goal(self._goal.values, cells, out)
         if self._windows is not None:
-            _sample_windows(self._windows.values, self._origins, cells_nd, self.node_cap, out, LANES)
-        return out.to_numpy()
+            _sample_windows(self._windows.values, self._windows.origins, cells, self.node_cap, out, LANES)
+        return out
 
     def trace(self, layer: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
         """Cells visited by following the successors of ``layer`` (0 = goal, 1 + j = node j) from ``start``.
@@ -417,24 +498,22 @@ class Engine:
         Stops at the layer's source, at a cell with no successor, or after ``max_steps`` moves; ``start`` itself is
         not included.
         """
-        out = ti.ndarray(ti.i32, (max(1, max_steps), 2))
+        if max_steps <= 0:
+            return []
         if layer == 0:
-            layers, g, lane, sr, sc, cap = self._goal, 0, 0, self.goal[0] + PAD, self.goal[1] + PAD, self.goal_cap
+            layers, g, lane, cap = self._goal, 0, 0, self.goal_cap
+            sr, sc = self.goal[0] + PAD, self.goal[1] + PAD
             origin = (-PAD, -PAD)
-            i, j = start[0] + PAD, start[1] + PAD
         else:
             self._check_node(layer - 1)
             g, lane = divmod(layer - 1, LANES)
-            layers, sr = self._windows, self.radius + PAD
-            sc, cap = sr, self.node_cap
-            origin = tuple(self.nodes[layer - 1] - self.radius - PAD)
-            i, j = start[0] - origin[0], start[1] - origin[1]
-        if max_steps <= 0:
-            return []
-        steps = _trace(layers.values, layers.pen, g, lane, i, j, sr, sc, cap, out, layers.lanes,
-                       self.neighbourhood, self.corner_cutting)
-        path = out.to_numpy()[:steps]
-        return [(int(r + origin[0]), int(c + origin[1])) for r, c in path]
+            layers, cap = self._windows, self.node_cap
+            sr = sc = self.radius + PAD
+            origin = tuple(int(v) for v in self.nodes[layer - 1] - self.radius - PAD)
+        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
+        _trace(layers.values, layers.pen, g, lane, start[0] - origin[0], start[1] - origin[1], sr, sc, cap, out,
+               layers.lanes, self.neighbourhood, self.corner_cutting)
+        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
 
     def _check_node(self, node: int) -> None:
         if not 0 <= node < len(self.nodes):

@@ -74,7 +74,8 @@ class DistanceField:
         """Run ``k`` synchronous DP iterations (eqs. 5-7); return how many cells the last one changed."""
         if isinstance(k, bool) or not isinstance(k, int) or k < 0:
             raise ValueError(f"k must be a non-negative integer, got {k!r}")
-        return self._engine.step(k)
+        self._engine.step(k)
+        return self._engine.changed() if k else 0
 
     def converge(self, max_iters: int | None = None) -> int:
         """Relax to the exact fixed point (the setup phase); return the number of sweeps it took.
