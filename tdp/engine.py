@@ -166,24 +166,41 @@ def _stamp_cells(stamps: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=
 
 
 @ti.kernel
-def _sweep(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), sr: ti.i32, sc: ti.i32, cap: ti.f32,
-           flip_rows: ti.i32, flip_cols: ti.i32, lanes: ti.template(), neighbourhood: ti.template(),
-           corner_cutting: ti.template()) -> ti.i32:
-    """One in-place (asynchronous) sweep in the given row and column order; returns the changed cells.
+def _settle(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
+            tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
+            corner_cutting: ti.template()) -> ti.i32:
+    """Asynchronous relaxation in place: each active tile (stamp >= ``tick``) sweeps its cells, alternately
+    forwards and backwards, until they stop changing (in cache), then stamps ``tick + 1`` on the neighbouring tiles
+    that its changed border cells reach. Returns the number of tiles that changed.
 
-    Races between threads are benign: every value read is the length of some path to the source in the current
-    map, and values only fall from the initial caps, so the sweeps reach the unique fixed point of eq. 5.
+    From the initial caps values only fall and every value read is the length of some path to the source, so
+    races between threads are benign and the tiles settle to the unique fixed point of eqs. 5 and 10.
     """
-    changed = 0
+    touched = 0
     rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
-    for g, a, b in ti.ndrange(arr.shape[0], rows, cols):
-        i = PAD + (rows - 1 - a if flip_rows else a)
-        j = PAD + (cols - 1 - b if flip_cols else b)
-        new = _updated(arr, pen, g, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
-        if _differs(new, arr[g, i, j], lanes):
-            changed += 1
-            arr[g, i, j] = new
-    return changed
+    for g, ta, tb in stamps:
+        if stamps[g, ta, tb] >= tick:
+            passes, changed_here = 0, 1
+            while changed_here and passes < 4 * TILE:
+                changed_here = 0
+                for k in range(TILE * TILE):
+                    kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
+                    u, v = kk // TILE, kk % TILE
+                    r, c = ta * TILE + u, tb * TILE + v
+                    if r < rows and c < cols:
+                        new = _updated(arr, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood,
+                                       corner_cutting)
+                        if _differs(new, arr[g, r + PAD, c + PAD], lanes):
+                            arr[g, r + PAD, c + PAD] = new
+                            changed_here = 1
+                            if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                                _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+                passes += 1
+            if passes > 1:
+                touched += 1
+            if changed_here:
+                stamps[g, ta, tb] = tick + 1
+    return touched
 
 
 @ti.kernel
@@ -424,28 +441,29 @@ class Engine:
         """Cells changed by the last iteration, all layers together."""
         return int(sum(layers.counts[0] for layers, _, _, _ in self._kinds()))
 
-    def converge(self, max_sweeps: int | None = None) -> int:
-        """Relax from the initial state to the fixed point with in-place sweeps; return the sweeps made.
+    def converge(self, max_rounds: int | None = None) -> int:
+        """Relax from the initial state to the fixed point; return the rounds (kernel launches) it took.
 
-        The fixed point of eqs. 5 and 10 is unique, so the result equals what synchronous iterations reach, bit for
-        bit; alternating the sweep direction makes it take far fewer passes.
+        Each round settles every active tile in place (several sweeps in cache) and wakes the neighbours its border
+        changes reach; it ends when no tile changes. The fixed point of eqs. 5 and 10 is unique, so the result
+        equals what synchronous iterations reach, bit for bit.
         """
         self.reset()
-        sweeps = 0
-        orders = ((0, 0), (1, 1), (0, 1), (1, 0))
-        changed = 1
-        while changed and (max_sweeps is None or sweeps < max_sweeps):
-            flip_rows, flip_cols = orders[sweeps % 4]
-            changed = 0
+        rounds, touched = 0, 1
+        while touched and (max_rounds is None or rounds < max_rounds):
+            touched = 0
             for layers, sr, sc, cap in self._kinds():
-                changed += _sweep(layers.values, layers.pen, sr, sc, cap, flip_rows, flip_cols, layers.lanes,
-                                  self.neighbourhood, self.corner_cutting)
-            sweeps += 1
+                touched += _settle(layers.values, layers.pen, layers.stamps, layers.tick, sr, sc, cap, layers.lanes,
+                                   self.neighbourhood, self.corner_cutting)
+                layers.tick += 1
+            rounds += 1
         for layers, _, _, _ in self._kinds():
             layers.buffers[1 - layers.current].copy_from(layers.values)
-            if not changed:
+            if touched:
+                layers.activate_all()
+            else:
                 layers.deactivate_all()
-        return sweeps
+        return rounds
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

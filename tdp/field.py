@@ -78,10 +78,11 @@ class DistanceField:
         return self._engine.changed() if k else 0
 
     def converge(self, max_iters: int | None = None) -> int:
-        """Relax to the exact fixed point (the setup phase); return the number of sweeps it took.
+        """Relax to the exact fixed point (the setup phase); return the number of rounds it took.
 
-        Starts again from the initial state and sweeps in place until a sweep changes nothing (DESIGN 4); the
-        result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the sweeps.
+        Starts again from the initial state and settles 8 x 8 tiles in place, each sweeping in cache until stable
+        and waking the neighbours its border changes reach, until no tile changes (DESIGN 4, issue 6); the
+        result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the rounds.
         """
         if max_iters is not None and (isinstance(max_iters, bool) or not isinstance(max_iters, int) or max_iters < 1):
             raise ValueError(f"max_iters must be a positive integer or None, got {max_iters!r}")
