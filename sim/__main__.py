@@ -95,12 +95,9 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
-    try:
-        return args.run(args)
-    except (ValueError, FileNotFoundError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 2
+    from tdp.cli import run as run_command
+
+    return run_command(parser(), argv)
 
 
 if __name__ == "__main__":

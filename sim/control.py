@@ -29,7 +29,8 @@ class PurePursuit:
         """Brake towards standstill within the acceleration limits."""
         return self._limited(0.0, 0.0, dt)
 
-    def steer(self, pose: tuple[float, float, float], points: list[tuple[float, float]], dt: float) -> tuple[float, float]:
+    def steer(self, pose: tuple[float, float, float], points: list[tuple[float, float]],
+              dt: float) -> tuple[float, float]:
         """(v, w) towards the look-ahead point of ``points`` from ``pose`` (x, y, yaw)."""
         if not points:
             return self.stop(dt)

@@ -6,12 +6,12 @@ from pathlib import Path
 import numpy as np
 
 import tdp
-from tdp.plot import MODE_COLOURS, _box_patch, _pyplot, draw_map
+from tdp.plot import MODE_COLOURS, _box_patch, pyplot, draw_map, save_figure
 
 
 def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
     """Write a PNG of the run in ``metrics`` (from :func:`sim.episode.run_episode`); returns the file written."""
-    plt = _pyplot()
+    plt = pyplot()
     cell, rows = metrics["sim"]["cell_m"], scenario.grid.shape[0]
 
     def to_cells(x, y):
@@ -49,9 +49,4 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
                  f"{metrics['path_length_m']:.2f} m (oracle {metrics['oracle_length_m']:.2f} m), "
                  f"contacts {metrics['contacts']}", fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-    return out
+    return save_figure(fig, out)

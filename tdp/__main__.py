@@ -58,12 +58,12 @@ def plan(args: argparse.Namespace) -> int:
     start = grid.check_free_cell(tuple(args.start), "--start")
     field = tdp.DistanceField(grid, args.goal, neighbourhood=args.neighbourhood, corner_cutting=args.corner_cutting)
     began = time.perf_counter()
-    sweeps = field.converge()
+    rounds = field.converge()
     elapsed = time.perf_counter() - began
     path = field.path(start)
     distance = field.distance(start)
     print(f"map {args.map}: {grid.shape[0]} x {grid.shape[1]} cells, {int(grid.occupied.sum())} obstacles")
-    print(f"setup (converge): {sweeps} sweeps in {elapsed * 1e3:.1f} ms (first run includes JIT compilation)")
+    print(f"setup (converge): {rounds} rounds in {elapsed * 1e3:.1f} ms (first run includes JIT compilation)")
     if not path:
         print(f"goal {tuple(args.goal)} is not reachable from {start}")
         return 1
@@ -107,12 +107,9 @@ def parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parser().parse_args(argv)
-    try:
-        return args.run(args)
-    except (ValueError, FileNotFoundError) as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 2
+    from tdp.cli import run as run_command
+
+    return run_command(parser(), argv)
 
 
 if __name__ == "__main__":

@@ -60,7 +60,8 @@ def segment_near_path(a: np.ndarray, b: np.ndarray, path: np.ndarray, reach: flo
 
 def _orientation(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Sign of the turn p -> q -> r (arrays of points broadcast together)."""
-    return np.sign((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+    cross = (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0])
+    return np.sign(cross)
 
 
 def crossing_blocked(nodes: np.ndarray, blocked: np.ndarray) -> np.ndarray:

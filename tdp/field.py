@@ -62,7 +62,7 @@ class DistanceField:
 
     @property
     def iterations(self) -> int:
-        """Synchronous iterations since the initial state (0 after :meth:`converge`'s reset plus its sweeps)."""
+        """Synchronous iterations run since the initial state (:meth:`converge` restarts from it and leaves 0)."""
         return self._engine.iterations
 
     @property

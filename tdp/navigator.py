@@ -151,7 +151,7 @@ class Navigator:
         return self.engine.goal
 
     def setup(self) -> int:
-        """The setup phase: converge every layer (robot stationary); returns the sweeps it took."""
+        """The setup phase: converge every layer (robot stationary); returns the rounds it took."""
         return self.engine.converge()
 
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:

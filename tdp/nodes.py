@@ -110,7 +110,7 @@ class NodeGraph:
 
     def neighbours(self, vertex: int):
         """(neighbour, weight) pairs of ``vertex`` over the edges with weight < DmaxQ."""
-        n, cap = self.n, self.vision
+        cap = self.vision
         if vertex == self.robot_id:
             weights = np.append(self.robot, [np.inf, self.robot_goal])
         elif vertex == self.goal_id:

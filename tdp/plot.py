@@ -8,7 +8,8 @@ import numpy as np
 from .grid import GridMap
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot on the headless Agg backend; a clear error if matplotlib is missing."""
     try:
         import matplotlib
     except ImportError:
@@ -16,6 +17,16 @@ def _pyplot():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
+
+
+def save_figure(fig, out: str | Path) -> Path:
+    """Write ``fig`` as a PNG at ``out`` (creating its folder), close it, and return the path."""
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    pyplot().close(fig)
+    return out
 
 
 def draw_map(ax, occupied: np.ndarray) -> None:
@@ -30,7 +41,7 @@ def draw_map(ax, occupied: np.ndarray) -> None:
 def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path, title: str = "",
                      distances: np.ndarray | None = None) -> Path:
     """Write a PNG of the map, the distance field (if given) and the path; returns the file written."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 6 * grid.shape[0] / grid.shape[1] + 0.4))
     if distances is not None:
         shown = np.where(np.isfinite(distances) & ~grid.occupied, distances, np.nan)
@@ -43,12 +54,7 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
         ax.plot(cols[-1], rows[-1], "*", color="tab:red", ms=14, label="goal")
         ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title, fontsize=9)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-    return out
+    return save_figure(fig, out)
 
 
 MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "oracle": "tab:gray"}
@@ -63,7 +69,7 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
     """A top-down figure like the paper's: map, nodes and their edges, the trajectory coloured by mode, the
     oracle's path, obstacles' first (outline) and last (filled) positions, the target path, the turn point A and
     the switch-back point B."""
-    plt = _pyplot()
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 7.4))
     draw_map(ax, scenario.grid.occupied)
     nodes = np.array(episode.nodes).reshape(-1, 2)
@@ -101,9 +107,4 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
                  f"length {episode.length:.1f} (oracle {episode.oracle_length:.1f}, ratio {episode.ratio:.3f})",
                  fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-    return out
+    return save_figure(fig, out)

@@ -10,7 +10,7 @@ import numpy as np
 
 from .field import DistanceField
 from .grid import GridMap
-from .navigator import Navigator, NavigatorConfig
+from .navigator import Navigator, NavigatorConfig, TickResult
 from .stencil import moves
 from .world import Scenario
 
@@ -62,9 +62,12 @@ class _Oracle:
     def move_robot(self, cell) -> None:
         self.robot = cell
 
-    def next_cell(self):
+    def tick(self) -> TickResult:
+        began = time.perf_counter()
         self.field.converge()
-        return self.field.successor(self.robot)
+        result = TickResult(mode="oracle", next_cell=self.field.successor(self.robot))
+        result.timings = {"converge": time.perf_counter() - began}
+        return result
 
 
 def _allowed_moves(config: NavigatorConfig) -> dict:
@@ -91,8 +94,15 @@ def _summary(samples: list[float]) -> dict:
     return {"mean": float(values.mean()), "p95": float(np.percentile(values, 95)), "max": float(values.max())}
 
 
-def _run(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
-    """Drive ``planner`` (a Navigator, or the oracle) through the scenario; returns the raw record."""
+def run_planner(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
+    """Drive ``planner`` through the scenario, tick by tick; returns the raw record (trajectory, modes, length in
+    cells, collisions, hits, ticks, reached, the planner's TickResults, the target's path).
+
+    A planner has ``update_map(cells, occupied)``, ``set_goal(cell)``, ``move_robot(cell)`` and ``tick()``
+    returning a :class:`~tdp.navigator.TickResult` (a :class:`~tdp.navigator.Navigator`, the oracle, or a
+    baseline such as the benchmarks' D* Lite). ``config`` gives the stencil the moves are checked against. Each
+    TickResult's ``timings["update"]`` is the time spent handing the tick's map and goal changes to the planner.
+    """
     table = _allowed_moves(config)
     occupied = scenario.occupancy(0)
     robot, target = scenario.start, scenario.goal
@@ -101,6 +111,7 @@ def _run(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, o
     for tick in range(1, max_ticks + 1):
         if record["reached"]:
             break
+        began = time.perf_counter()
         now = scenario.occupancy(tick)
         changed = np.argwhere(now != occupied)
         if len(changed):
@@ -112,8 +123,10 @@ def _run(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, o
             target = new_target
             planner.set_goal(target)
             record["target_path"].append(target)
-        result = planner.tick() if isinstance(planner, Navigator) else None
-        wanted = result.next_cell if result else planner.next_cell()
+        update_s = time.perf_counter() - began
+        result = planner.tick()
+        result.timings["update"] = update_s
+        wanted = result.next_cell
         if wanted is not None and not occupied[robot]:
             if _legal(table, occupied, robot, wanted):
                 record["length"] += math.dist(robot, wanted)
@@ -122,7 +135,7 @@ def _run(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, o
                 record["collisions"] += 1
         planner.move_robot(robot)
         record["trajectory"].append(robot)
-        record["modes"].append(result.mode if result else "oracle")
+        record["modes"].append(result.mode)
         record["results"].append(result)
         record["ticks"] = tick
         record["reached"] = robot == target
@@ -157,7 +170,7 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
     edges = [(a, b) for a, b, _ in navigator._graph().edges()] if config.accelerating else []
-    record = _run(scenario, navigator, config, limit, report)
+    record = run_planner(scenario, navigator, config, limit, report)
 
     oracle_record = oracle_run(scenario, config, limit)
     return _episode(scenario, config, navigator, record, oracle_record, nodes, edges)
@@ -166,11 +179,11 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
 def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> dict:
     """The oracle's run of ``scenario``: a dict with its ``length`` (cells), ``trajectory``, ``reached``, ``ticks``."""
     start_grid = GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
-    return _run(scenario, _Oracle(start_grid, scenario.start, scenario.goal, config), config, max_ticks)
+    return run_planner(scenario, _Oracle(start_grid, scenario.start, scenario.goal, config), config, max_ticks)
 
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
-    results = [r for r in record["results"] if r is not None]
+    results = record["results"]
     detections, turn, back = [], None, None
     for tick, result in enumerate(results, start=1):
         for d in result.detections:
@@ -190,7 +203,7 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
                      if obstacle.present(tick)]
         closest = min(distances) if distances else None
     ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
-    timings = {name: _summary([r.timings[name] for r in results]) for name in ("dp", "monitor", "search")}
+    timings = {name: _summary([r.timings[name] for r in results]) for name in ("update", "dp", "monitor", "search")}
     timings["total"] = _summary([sum(r.timings.values()) for r in results])
     return Episode(
         scenario=scenario.name, config=config.to_dict(), reached=record["reached"], ticks=record["ticks"],

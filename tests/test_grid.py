@@ -1,7 +1,4 @@
 """Map formats: MovingAI .map/.scen, ROS map_server YAML + PGM/PNG, plain images; inflation and frames."""
-import math
-import shutil
-
 import numpy as np
 import pytest
 from PIL import Image
