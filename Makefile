@@ -20,6 +20,9 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) -m benchmarks.kernel
+	$(PY) -m benchmarks.convergence
+	$(PY) -m benchmarks.blockage
+	$(PY) -m benchmarks.paper
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results

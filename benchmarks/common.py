@@ -9,6 +9,8 @@ import time
 from pathlib import Path
 from typing import Callable
 
+import numpy as np
+
 RESULTS = Path(__file__).parent / "results"
 
 
@@ -45,9 +47,65 @@ def write_json(name: str, payload: dict) -> Path:
     return path
 
 
+def quick_parser(doc: str):
+    """The command line every benchmark script takes: --quick for a smoke run of under a minute."""
+    import argparse
+
+    parser = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="a smoke run of under a minute")
+    return parser
+
+
 def print_table(headers: list[str], rows: list[list[str]]) -> None:
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(headers)]
     print("| " + " | ".join(h.ljust(w) for h, w in zip(headers, widths)) + " |")
     print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
     for row in rows:
         print("| " + " | ".join(c.rjust(w) for c, w in zip(row, widths)) + " |")
+
+
+def run_navigator(scenario, config, max_ticks: int | None = None) -> tuple[dict, object]:
+    """One grid-level run of a Navigator (setup, then the tick loop); returns (record, navigator)."""
+    import tdp
+    from tdp.simulate import run_planner
+
+    navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
+    navigator.setup()
+    record = run_planner(scenario, navigator, config, max_ticks or scenario.max_ticks)
+    return record, navigator
+
+
+def unblocked_route(scenario) -> list[tuple[int, int]]:
+    """The oracle's route through the scenario without its blocking obstacle: the way every planner drives
+    until the blockage tells it otherwise."""
+    import tdp
+    from tdp.simulate import oracle_run
+
+    others = [o for k, o in enumerate(scenario.obstacles) if k != scenario.blocking]
+    free = tdp.Scenario(scenario.grid, scenario.start, scenario.goal, obstacles=others, name=scenario.name)
+    return oracle_run(free, tdp.NavigatorConfig(), scenario.max_ticks)["trajectory"]
+
+
+def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[tuple[int, int]]) -> dict:
+    """Ratio to the oracle; ticks from the change to the turn (the first tick at which the robot leaves
+    ``route``, the way it would have gone without the blockage); the closest approach to the blocking box (cells)
+    after the change; planner time per tick (ms: median, mean, p95, max; map update, DP, monitor and search
+    together)."""
+    import math
+
+    box = scenario.obstacles[scenario.blocking]
+    approach = []
+    for tick, (r, c) in enumerate(record["trajectory"]):
+        if tick >= scenario.change_tick and box.present(tick):
+            r0, c0, r1, c1 = box.footprint(tick)
+            approach.append(math.hypot(max(r0 - r, 0, r - r1 + 1), max(c0 - c, 0, c - c1 + 1)))
+    closest = min(approach) if approach else math.nan
+    trajectory = record["trajectory"]
+    turn = next((t for t in range(scenario.change_tick, len(trajectory))
+                 if t >= len(route) or trajectory[t] != route[t]), len(trajectory))
+    per_tick = np.array([sum(r.timings.values()) for r in record["results"]]) * 1e3
+    return {"reached": record["reached"], "ticks": record["ticks"], "length": record["length"],
+            "ratio": record["length"] / oracle_length, "turn_after": turn - scenario.change_tick,
+            "closest": closest, "ms_median": float(np.median(per_tick)), "ms_mean": float(per_tick.mean()),
+            "ms_p95": float(np.percentile(per_tick, 95)),
+            "ms_max": float(per_tick.max())}

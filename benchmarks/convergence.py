@@ -4,12 +4,11 @@
 
 Random maps (20 % obstacles) of growing size and the MovingAI maps in ../shared/data (skipped when absent). The
 graph is built once and timed apart; Dijkstra's solve and converge() are warm medians of repeats in the same
-process; the results are checked equal. Also counted: converge()'s sweeps, and, up to 512 x 512, the synchronous
-(Jacobi) iterations that step() needs to reach the same fixed point.
+process; the results are checked equal. Also counted: converge()'s rounds (kernel launches), and, up to
+512 x 512, the synchronous (Jacobi) iterations that step() needs to reach the same fixed point.
 """
 from __future__ import annotations
 
-import argparse
 import time
 from pathlib import Path
 
@@ -17,7 +16,7 @@ import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import machine, median_time, print_table, write_json
+from benchmarks.common import machine, median_time, print_table, quick_parser, write_json
 from benchmarks.reference_graph import grid_graph
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai"
@@ -57,14 +56,14 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int) -> dict:
     reference = dijkstra(graph, indices=source).reshape(rows, cols)
     dijkstra_s = median_time(lambda: dijkstra(graph, indices=source), repeats)
     field = tdp.DistanceField(tdp.GridMap(occupied), goal)
-    sweeps = field.converge()
+    rounds = field.converge()
     converge_s = median_time(field.converge, repeats)
     ours = field.distances()
     finite = np.isfinite(reference)
     exact = bool(np.array_equal(np.isfinite(ours), finite)) and bool(
         np.allclose(ours[finite], reference[finite], rtol=1e-5))
     result = {"map": name, "cells": rows * cols, "free": int((~occupied).sum()), "build_ms": build_s * 1e3,
-              "dijkstra_ms": dijkstra_s * 1e3, "converge_ms": converge_s * 1e3, "sweeps": sweeps,
+              "dijkstra_ms": dijkstra_s * 1e3, "converge_ms": converge_s * 1e3, "rounds": rounds,
               "ratio": converge_s / dijkstra_s, "equal": exact}
     if rows * cols <= 512 * 512:
         result["jacobi_iterations"] = jacobi_iterations(occupied, goal)
@@ -72,9 +71,9 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int) -> dict:
 
 
 def figure(results: list[dict], path: Path) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
 
     randoms = [r for r in results if r["map"].startswith("random ")]
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
@@ -90,14 +89,11 @@ def figure(results: list[dict], path: Path) -> None:
     ax.set_ylabel("ms (median, warm)")
     ax.set_title("setup phase: random maps (20% obstacles); triangles: MovingAI maps", fontsize=9)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--quick", action="store_true")
+    parser = quick_parser(__doc__)
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     sizes, maps = (QUICK_SIZES, QUICK_MAPS) if args.quick else (SIZES, MAPS)
@@ -113,12 +109,12 @@ def main() -> None:
     for name, occupied, goal in cases:
         results.append(measure(name, occupied, goal, repeats))
         r = results[-1]
-        print(f"  {name}: converge {r['converge_ms']:.1f} ms ({r['sweeps']} sweeps), Dijkstra {r['dijkstra_ms']:.1f} ms",
-              flush=True)
-    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra", "sweeps",
+        print(f"  {name}: converge {r['converge_ms']:.1f} ms ({r['rounds']} rounds), "
+              f"Dijkstra {r['dijkstra_ms']:.1f} ms", flush=True)
+    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra", "rounds",
                  "Jacobi iterations", "equal"],
                 [[r["map"], str(r["cells"]), f"{r['build_ms']:.1f}", f"{r['dijkstra_ms']:.1f}",
-                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", str(r["sweeps"]),
+                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", str(r["rounds"]),
                   str(r.get("jacobi_iterations", "-")), str(r["equal"])] for r in results])
     path = write_json("convergence-quick" if args.quick else "convergence", {"machine": machine(), "results": results})
     figure(results, path.with_suffix(".png"))

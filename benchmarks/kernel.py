@@ -17,9 +17,9 @@ import sys
 
 import numpy as np
 
-from benchmarks.common import machine, median_time, print_table, write_json
+from benchmarks.common import machine, median_time, print_table, quick_parser, write_json
 
-CASES = [(100, 25), (1024, 64), (1024, 256)]
+CASES = [(size, nodes) for size in (100, 256, 512, 1024, 2048) for nodes in (0, 25, 64, 256)]
 QUICK_CASES = [(100, 25), (256, 16)]  # a smoke run
 BYTES_PER_CELL_LAYER = 12  # read the value and the penalty, write the value: the floor of a streaming update
 
@@ -37,14 +37,16 @@ def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
     from tdp.engine import Engine
     from tdp.nodes import place_nodes
 
-    lattice = place_nodes(np.zeros((size, size), bool), count=count)
+    lattice = place_nodes(np.zeros((size, size), bool), count=max(count, 1))
+    if not count:
+        lattice = lattice._replace(cells=lattice.cells[:0])
     occupied = np.random.default_rng(size).random((size, size)) < 0.1  # 10% random obstacles,
     occupied[tuple(lattice.cells.T)] = False  # but every lattice node free: the node counts are exact
     cap = 2.5 * lattice.spacing
     goal = tuple(np.argwhere(~occupied)[0])
     engine = Engine(occupied, goal, nodes=lattice.cells, node_cap=cap)
     reference = NumpyDP(occupied, goal, lattice.cells, cap)
-    side = 2 * int(np.ceil(cap)) + 1
+    side = 2 * int(np.ceil(cap)) + 1 if count else 0
     cell_layers = size * size + len(lattice.cells) * side * side
 
     def dense_step():
@@ -94,12 +96,12 @@ def run_threads(threads: int, cases: list[tuple[int, int]], repeats: int) -> lis
 
 
 def figure(results: list[dict], path) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
 
     labels = sorted({(r["size"], r["nodes"]) for r in results})
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(max(7, 0.7 * len(labels)), 4.5))
     width = 0.2
     series = [("numpy", 1, "numpy_ms"), ("taichi 1 thread", 1, "taichi_ms"), ("taichi 2 threads", 2, "taichi_ms"),
               ("bandwidth floor", 2, "floor_ms")]
@@ -107,18 +109,16 @@ def figure(results: list[dict], path) -> None:
         values = [next(r[key] for r in results if (r["size"], r["nodes"]) == label and r["threads"] == threads)
                   for label in labels]
         ax.bar(np.arange(len(labels)) + (k - 1.5) * width, values, width, label=name)
-    ax.set_xticks(range(len(labels)), [f"{s}x{s}, {n} nodes" for s, n in labels])
+    ax.set_xticks(range(len(labels)), [f"{s}², {n}" for s, n in labels], rotation=60, fontsize=7)
+    ax.set_xlabel("map side², nodes")
     ax.set_yscale("log")
     ax.set_ylabel("ms per all-layer iteration")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--quick", action="store_true", help="small sizes only (a smoke run)")
+    parser = quick_parser(__doc__)
     parser.add_argument("--repeats", type=int, default=15)
     parser.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--cases", help=argparse.SUPPRESS)
