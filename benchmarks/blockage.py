@@ -37,6 +37,7 @@ def run_scenario(name: str, ks: list[int], variants: dict) -> list[dict]:
     for k in ks:
         for label, options in variants.items():
             config = tdp.NavigatorConfig(updates_per_move=k, **options)
+            run_navigator(scenario, config, max_ticks=2)  # compiles this K's fused kernel
             record, _ = run_navigator(scenario, config)
             rows.append({"scenario": name, "planner": label, "k": k,
                          **blockage_metrics(scenario, record, oracle["length"], route)})

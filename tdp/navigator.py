@@ -176,18 +176,7 @@ class Navigator:
         The mode is "dp" or "backup" while the robot moves, "wait" while it has nowhere to go (the goal layer has
         no successor, or the backup search found no route: it is retried every tick).
         """
-        dp_s = monitor_s = 0.0
-        new_pairs: list[tuple[int, tuple[int, int]]] = []
-        for _ in range(self.config.updates_per_move):
-            began = time.perf_counter()
-            self.engine.step(1)
-            dp_s += time.perf_counter() - began
-            if self.config.accelerating:
-                began = time.perf_counter()
-                pairs = self._graph().pairs
-                new_pairs += [(self.engine.iterations, p) for p in self.monitor.observe(pairs)]
-                monitor_s += time.perf_counter() - began
-            self._since_detection += 1
+        new_pairs, dp_s, monitor_s = self._iterate()
         began = time.perf_counter()
         result = TickResult(mode=self.state, next_cell=None, detections=self._classify(new_pairs))
         monitor_s += time.perf_counter() - began
@@ -205,16 +194,42 @@ class Navigator:
         result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
         return result
 
+    def _iterate(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
+        """K DP iterations; with nodes, the monitor observes the pair distances after each (one kernel launch for
+        all). Returns the newly blocked pairs with their iteration, and the seconds spent in DP and monitor."""
+        k = self.config.updates_per_move
+        self._since_detection += k
+        began = time.perf_counter()
+        if not self.config.accelerating:
+            self.engine.step(k)
+            return [], time.perf_counter() - began, 0.0
+        samples = self.engine.advance(k, self._graph_cells())
+        dp_s = time.perf_counter() - began
+        began = time.perf_counter()
+        active = self._active_nodes()
+        new_pairs = []
+        for step, sample in enumerate(samples):
+            iteration = self.engine.iterations - k + step + 1
+            pairs = NodeGraph(sample, self.vision, active).pairs
+            new_pairs += [(iteration, pair) for pair in self.monitor.observe(pairs)]
+        return new_pairs, dp_s, time.perf_counter() - began
+
+    def _graph_cells(self) -> np.ndarray:
+        """The cells the node graph reads every layer at: the nodes, then R, then G."""
+        return np.vstack([self.nodes, [self.robot], [self.goal]])
+
+    def _active_nodes(self) -> np.ndarray:
+        """Nodes not covered by an obstacle (DESIGN 5.1)."""
+        return ~self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
         """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
         whose segments cross them."""
-        cells = np.vstack([self.nodes, [self.robot], [self.goal]])
-        samples = self.engine.sample(cells)
-        active = ~self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+        samples = self.engine.sample(self._graph_cells())
         unreliable = None
         if without_blocked and self.monitor.blocked is not None:
             unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
-        return NodeGraph(samples, self.vision, active, unreliable)
+        return NodeGraph(samples, self.vision, self._active_nodes(), unreliable)
 
     def current_path(self) -> list[tuple[int, int]]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
