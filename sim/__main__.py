@@ -38,7 +38,7 @@ def _summary(metrics: dict) -> str:
     return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
             f"oracle {metrics['oracle_length_m']:.2f} m, ratio {metrics['ratio']:.3f}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m; planner "
-            f"{metrics['planner_ms_per_tick']['mean']:.1f} ms/tick; wall {metrics['wall_s']:.1f} s")
+            f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -52,12 +52,13 @@ def compare(args: argparse.Namespace) -> int:
     out = Path(args.out)
     rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind)) for kind in ("accelerating", "plain-dp")]
     print(f"\n{args.scenario}, K = {args.updates}, PyBullet DIRECT")
-    print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | planner ms/tick |")
+    print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "
+          "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for kind, m in rows:
         print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {m['oracle_length_m']:.2f} "
               f"| {m['ratio']:.3f} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
-              f"{m['planner_ms_per_tick']['mean']:.1f} |")
+              f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))
     return 0
 
