@@ -6,8 +6,10 @@ The only module of tdp that imports taichi. Layout (DESIGN 4):
 * node layers are windows of side 2r + 1 around their nodes, r = ceil(cap); ``LANES`` of them are packed per cell
   as a ``ti.types.vector`` so that one relaxation updates them all with SIMD. Group g, lane l is node g*LANES + l;
   unused lanes are walled in and stay at the cap;
-* obstacles are a penalty array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's
-  candidate is ``D[Z] + |V - Z| + pen[Z] + pen[crossed cells]``, inf when any of them is blocked.
+* an obstacle holds the cap (eq. 5), written into both buffers the moment a cell becomes occupied, so a move
+  into it yields at least the cap and never wins the minimum; the cells a move crosses are checked in a penalty
+  array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's candidate is
+  ``D[Z] + |V - Z| + pen[crossed cells]``.
 
 All kernels take ndarrays, so a kernel compiles once per (neighbourhood, corner rule, layer kind) and not once per
 map. Kernels must live in a ``.py`` file: Taichi reads their source.
@@ -86,7 +88,7 @@ def _best_candidate(src: ti.template(), pen: ti.template(), g, i, j, cap, lanes:
     """min(cap, min over allowed moves of D[Z] + |V - Z|): the last case of eqs. 5 and 10."""
     best = _broadcast(cap, lanes)
     for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
-        cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost) + pen[g, i + m.dr, j + m.dc]
+        cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost)
         for c in ti.static(m.crossed):
             cand += pen[g, i + c[0], j + c[1]]
         best = ti.min(best, cand)
@@ -282,15 +284,25 @@ def _gather_window_pen(grid_pen: ti.types.ndarray(ndim=3), window_pen: ti.types.
 
 
 @ti.kernel
-def _paint_grid(pen: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1)):
+def _paint_grid(pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3),
+                buffer_b: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2),
+                values: ti.types.ndarray(ndim=1), cap: ti.f32):
+    """Write changed cells' penalties; a newly occupied cell takes its obstacle value, the cap, at once."""
     for k in range(cells.shape[0]):
-        pen[0, cells[k, 0] + PAD, cells[k, 1] + PAD] = values[k]
+        r, c = cells[k, 0] + PAD, cells[k, 1] + PAD
+        pen[0, r, c] = values[k]
+        if values[k] > 0:
+            buffer_a[0, r, c] = cap
+            buffer_b[0, r, c] = cap
 
 
 @ti.kernel
-def _paint_windows(window_pen: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2),
-                   cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1), lanes: ti.template()):
-    """Write changed cells' penalties into every node window that contains them."""
+def _paint_windows(window_pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3),
+                   buffer_b: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2),
+                   cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1), cap: ti.f32,
+                   lanes: ti.template()):
+    """Write changed cells' penalties into every node window that contains them; a newly occupied cell takes its
+    obstacle value, the cap, at once."""
     side = window_pen.shape[1] - 2 * PAD
     for k, g in ti.ndrange(cells.shape[0], window_pen.shape[0]):
         for lane in ti.static(range(lanes)):
@@ -298,6 +310,9 @@ def _paint_windows(window_pen: ti.types.ndarray(ndim=3), origins: ti.types.ndarr
             b = cells[k, 1] - origins[g * lanes + lane, 1]
             if 0 <= a < side and 0 <= b < side:
                 window_pen[g, a + PAD, b + PAD][lane] = values[k]
+                if values[k] > 0:
+                    buffer_a[g, a + PAD, b + PAD][lane] = cap
+                    buffer_b[g, a + PAD, b + PAD][lane] = cap
 
 
 @ti.func
@@ -308,7 +323,7 @@ def _successor_move(arr: ti.template(), pen: ti.template(), g, lane, i, j, sr, s
     found = -1
     index = 0
     for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
-        cand = _lane(arr[g, i + m.dr, j + m.dc] + ti.f32(m.cost) + pen[g, i + m.dr, j + m.dc], lane, lanes)
+        cand = _lane(arr[g, i + m.dr, j + m.dc] + ti.f32(m.cost), lane, lanes)
         for c in ti.static(m.crossed):
             cand += _lane(pen[g, i + c[0], j + c[1]], lane, lanes)
         if cand < best:
@@ -534,9 +549,11 @@ class Engine:
         occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         values = np.where(occupied, np.inf, 0.0).astype(np.float32)
-        _paint_grid(self._goal.pen, cells, values)
-        if self._windows is not None:
-            _paint_windows(self._windows.pen, self._windows.origins, cells, values, LANES)
+        goal, windows = self._goal, self._windows
+        _paint_grid(goal.pen, goal.buffers[0], goal.buffers[1], cells, values, self.goal_cap)
+        if windows is not None:
+            _paint_windows(windows.pen, windows.buffers[0], windows.buffers[1], windows.origins, cells, values,
+                           self.node_cap, LANES)
         for layers, _, _, _ in self._kinds():
             layers.activate_cells(cells)
 
