@@ -44,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
           f"{episode.oracle_length:.2f}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
           f"({sum(d['relevant'] for d in episode.detections)} relevant); planner "
-          f"{episode.timings['total']['mean']:.2f} ms/tick mean")
+          f"{episode.timings['total']['median']:.2f} ms/tick (median)")
     print(f"wrote {out / 'metrics.json'} and {figure}")
     return 0
 
