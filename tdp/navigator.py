@@ -20,7 +20,6 @@ from .nodes import NodeGraph, place_nodes
 from .search import uniform_cost_search
 from .stencil import check_neighbourhood
 
-MODES = ("dp", "backup", "wait")
 PLACEMENTS = ("drop", "nudge")
 
 
