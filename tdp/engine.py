@@ -283,36 +283,31 @@ def _gather_window_pen(grid_pen: ti.types.ndarray(ndim=3), window_pen: ti.types.
         window_pen[g, i, j] = value
 
 
-@ti.kernel
-def _paint_grid(pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3),
-                buffer_b: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2),
-                values: ti.types.ndarray(ndim=1), cap: ti.f32):
-    """Write changed cells' penalties; a newly occupied cell takes its obstacle value, the cap, at once."""
-    for k in range(cells.shape[0]):
-        r, c = cells[k, 0] + PAD, cells[k, 1] + PAD
-        pen[0, r, c] = values[k]
-        if values[k] > 0:
-            buffer_a[0, r, c] = cap
-            buffer_b[0, r, c] = cap
+@ti.func
+def _store(arr: ti.template(), g, i, j, lane: ti.template(), value, lanes: ti.template()):
+    """Write ``value`` into component ``lane`` of arr[g, i, j] (the whole cell for a scalar layer), storing only
+    that component: other lanes of the cell may be written by other threads at the same time."""
+    if ti.static(lanes == 0):
+        arr[g, i, j] = value
+    else:
+        arr[g, i, j][lane] = value
 
 
 @ti.kernel
-def _paint_windows(window_pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3),
-                   buffer_b: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2),
-                   cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1), cap: ti.f32,
-                   lanes: ti.template()):
-    """Write changed cells' penalties into every node window that contains them; a newly occupied cell takes its
-    obstacle value, the cap, at once."""
-    side = window_pen.shape[1] - 2 * PAD
-    for k, g in ti.ndrange(cells.shape[0], window_pen.shape[0]):
-        for lane in ti.static(range(lanes)):
-            a = cells[k, 0] - origins[g * lanes + lane, 0]
-            b = cells[k, 1] - origins[g * lanes + lane, 1]
-            if 0 <= a < side and 0 <= b < side:
-                window_pen[g, a + PAD, b + PAD][lane] = values[k]
+def _paint(pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3), buffer_b: ti.types.ndarray(ndim=3),
+           origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1),
+           cap: ti.f32, lanes: ti.template(), rows: ti.i32, cols: ti.i32):
+    """Write changed cells' penalties into every layer that contains them (``origins``, one per lane, maps grid to
+    layer coordinates of a rows x cols layer); a newly occupied cell takes its obstacle value, the cap, at once."""
+    for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+        for lane in ti.static(range(max(lanes, 1))):
+            a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
+            b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
+            if 0 <= a < rows and 0 <= b < cols:
+                _store(pen, g, a + PAD, b + PAD, lane, values[k], lanes)
                 if values[k] > 0:
-                    buffer_a[g, a + PAD, b + PAD][lane] = cap
-                    buffer_b[g, a + PAD, b + PAD][lane] = cap
+                    _store(buffer_a, g, a + PAD, b + PAD, lane, cap, lanes)
+                    _store(buffer_b, g, a + PAD, b + PAD, lane, cap, lanes)
 
 
 @ti.func
@@ -430,6 +425,12 @@ class _Layers:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
         _stamp_cells(self.stamps, cells, self.origins, self.lanes, self.rows, self.cols, self.tick)
 
+    def paint(self, cells: np.ndarray, values: np.ndarray, cap: float) -> None:
+        """Set the penalties of ``cells`` to ``values`` (0 free, inf occupied) and wake the tiles around them."""
+        _paint(self.pen, self.buffers[0], self.buffers[1], self.origins, cells, values, cap, self.lanes, self.rows,
+               self.cols)
+        self.activate_cells(cells)
+
     def relax(self, sr: int, sc: int, cap: float, neighbourhood: int, corner_cutting: bool) -> None:
         """One Jacobi iteration over the active tiles; ``counts[0]`` then holds the changed cells."""
         _relax(self.values, self.buffers[1 - self.current], self.pen, self.stamps, self.tick, self.counts, sr, sc,
@@ -543,19 +544,14 @@ class Engine:
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels."""
-        cells = np.asarray(cells, np.int32).reshape(-1, 2)
+        cells = np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
         if not len(cells):
             return
         occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         values = np.where(occupied, np.inf, 0.0).astype(np.float32)
-        goal, windows = self._goal, self._windows
-        _paint_grid(goal.pen, goal.buffers[0], goal.buffers[1], cells, values, self.goal_cap)
-        if windows is not None:
-            _paint_windows(windows.pen, windows.buffers[0], windows.buffers[1], windows.origins, cells, values,
-                           self.node_cap, LANES)
-        for layers, _, _, _ in self._kinds():
-            layers.activate_cells(cells)
+        for layers, _, _, cap in self._kinds():
+            layers.paint(cells, values, cap)
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the goal layer's source; the values propagate from it from the next iteration on."""
