@@ -143,6 +143,7 @@ class Navigator:
         self._path_cost = 0.0
         self._since_detection = 0
         self._subgoal: int | None = None
+        self._readings: np.ndarray | None = None  # every layer at the graph cells, as of the last iteration
 
     # -- inputs ------------------------------------------------------------------------------------------------
     @property
@@ -151,22 +152,26 @@ class Navigator:
 
     def setup(self) -> int:
         """The setup phase: converge every layer (robot stationary); returns the rounds it took."""
+        self._readings = None
         return self.engine.converge()
 
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         self.engine.set_cells(cells, occupied)
+        self._readings = None
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the target (moving-target scenarios)."""
         if not self.grid.contains(goal):
             raise ValueError(f"goal {goal} is outside the {self.grid.shape[0]} x {self.grid.shape[1]} map")
         self.engine.set_goal(goal)
+        self._readings = None
 
     def move_robot(self, cell: tuple[int, int]) -> None:
         """Tell the navigator where the robot is now."""
         self.robot = (int(cell[0]), int(cell[1]))
+        self._readings = None
 
     # -- the tick ----------------------------------------------------------------------------------------------
     def tick(self) -> TickResult:
@@ -194,8 +199,9 @@ class Navigator:
         return result
 
     def _iterate(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
-        """K DP iterations; with nodes, the monitor observes the pair distances after each (one kernel launch for
-        all). Returns the newly blocked pairs with their iteration, and the seconds spent in DP and monitor."""
+        """K DP iterations; with nodes, the monitor observes the pair distances after each (one kernel launch per
+        iteration, sampling included). Returns the newly blocked pairs with their iteration, and the seconds spent
+        in DP and monitor."""
         k = self.config.updates_per_move
         self._since_detection += k
         began = time.perf_counter()
@@ -203,6 +209,7 @@ class Navigator:
             self.engine.step(k)
             return [], time.perf_counter() - began, 0.0
         samples = self.engine.advance(k, self._graph_cells())
+        self._readings = samples[-1]
         dp_s = time.perf_counter() - began
         began = time.perf_counter()
         active = self._active_nodes()
@@ -224,11 +231,12 @@ class Navigator:
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
         """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
         whose segments cross them."""
-        samples = self.engine.sample(self._graph_cells())
+        if self._readings is None:
+            self._readings = self.engine.sample(self._graph_cells())
         unreliable = None
         if without_blocked and self.monitor.blocked is not None:
             unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
-        return NodeGraph(samples, self.vision, self._active_nodes(), unreliable)
+        return NodeGraph(self._readings, self.vision, self._active_nodes(), unreliable)
 
     def current_path(self) -> list[tuple[int, int]]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
