@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 import statistics
@@ -91,14 +92,11 @@ def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[t
     ``route``, the way it would have gone without the blockage); the closest approach to the blocking box (cells)
     after the change; planner time per tick (ms: median, mean, p95, max; map update, DP, monitor and search
     together)."""
-    import math
+    from tdp.world import box_distance
 
     box = scenario.obstacles[scenario.blocking]
-    approach = []
-    for tick, (r, c) in enumerate(record["trajectory"]):
-        if tick >= scenario.change_tick and box.present(tick):
-            r0, c0, r1, c1 = box.footprint(tick)
-            approach.append(math.hypot(max(r0 - r, 0, r - r1 + 1), max(c0 - c, 0, c - c1 + 1)))
+    approach = [box_distance(cell, box.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
+                if tick >= scenario.change_tick and box.present(tick)]
     closest = min(approach) if approach else math.nan
     trajectory = record["trajectory"]
     turn = next((t for t in range(scenario.change_tick, len(trajectory))

@@ -238,6 +238,12 @@ class Navigator:
             unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
         return NodeGraph(self._readings, self.vision, self._active_nodes(), unreliable)
 
+    def node_edges(self) -> list[tuple[int, int]]:
+        """The node pairs (a < b) connected in the node graph now (eq. 14), e.g. for a figure."""
+        if not self.config.accelerating:
+            return []
+        return [(a, b) for a, b, _ in self._graph().edges()]
+
     def current_path(self) -> list[tuple[int, int]]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
         limit = max(1, int(4 * self.vision)) if self.config.accelerating else self.grid.shape[0] * self.grid.shape[1]

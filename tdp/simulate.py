@@ -12,7 +12,7 @@ from .field import DistanceField
 from .grid import GridMap
 from .navigator import Navigator, NavigatorConfig, TickResult
 from .stencil import moves
-from .world import Scenario
+from .world import Scenario, box_distance
 
 
 @dataclass
@@ -81,13 +81,6 @@ def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
     if move is None or occupied[there]:
         return False
     return all(not occupied[here[0] + dr, here[1] + dc] for dr, dc in move.crossed)
-
-
-def _box_distance(cell, box) -> float:
-    r0, c0, r1, c1 = box
-    dr = max(r0 - cell[0], 0, cell[0] - (r1 - 1))
-    dc = max(c0 - cell[1], 0, cell[1] - (c1 - 1))
-    return math.hypot(dr, dc)
 
 
 def _summary(samples: list[float]) -> dict:
@@ -171,7 +164,7 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     navigator = Navigator(start_grid, scenario.start, scenario.goal, config)
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
-    edges = [(a, b) for a, b, _ in navigator._graph().edges()] if config.accelerating else []
+    edges = navigator.node_edges()
     record = run_planner(scenario, navigator, config, limit, report)
 
     oracle_record = oracle_run(scenario, config, limit)
@@ -201,7 +194,7 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
     closest = None
     if scenario.blocking is not None:
         obstacle = scenario.obstacles[scenario.blocking]
-        distances = [_box_distance(cell, obstacle.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
+        distances = [box_distance(cell, obstacle.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
                      if obstacle.present(tick)]
         closest = min(distances) if distances else None
     ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0

@@ -20,6 +20,12 @@ def _polyline_point(points: list[tuple[float, float]], travelled: float) -> tupl
     return points[-1]
 
 
+def box_distance(cell: tuple[int, int], box: tuple[int, int, int, int]) -> float:
+    """Euclidean distance in cells from ``cell`` to the nearest cell of ``box`` = (r0, c0, r1, c1) (0 inside)."""
+    r0, c0, r1, c1 = box
+    return math.hypot(max(r0 - cell[0], 0, cell[0] - (r1 - 1)), max(c0 - cell[1], 0, cell[1] - (c1 - 1)))
+
+
 def _round(x: float) -> int:
     return int(math.floor(x + 0.5))
 
