@@ -140,23 +140,22 @@ class _Run:
         steps_per_control = sim.physics_hz // sim.control_hz
         control_dt = 1.0 / sim.control_hz
         steps = round(sim.tick_s * sim.physics_hz)
+        last = self.robot.pose()
         for step in range(steps):
             if step % steps_per_control == 0:
-                pose = self.robot.pose()
                 if result.mode == "wait" and escape is None:
                     v, w = self.controller.stop(control_dt)
                 else:
-                    v, w = self.controller.steer(pose, route, control_dt)
+                    v, w = self.controller.steer(last, route, control_dt)
                 self.robot.command(v, w)
                 self._measure_clearance()
             self.world.update(((tick - 1) * steps + step + 1) / sim.physics_hz)
-            before = self.robot.pose()
             p.stepSimulation(physicsClientId=self.client)
-            after = self.robot.pose()
-            self.length_m += math.hypot(after[0] - before[0], after[1] - before[1])
+            now = self.robot.pose()
+            self.length_m += math.hypot(now[0] - last[0], now[1] - last[1])
+            last = now
             self._count_contacts()
-        x, y, _ = self.robot.pose()
-        self.trace.append((x, y, result.mode))
+        self.trace.append((last[0], last[1], result.mode))
         self.modes.append(result.mode)
 
     def _escape(self) -> tuple[float, float] | None:
