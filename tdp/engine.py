@@ -45,7 +45,8 @@ def init_taichi() -> None:
     threads = os.environ.get("TDP_THREADS", "2")
     if not threads.isdigit() or int(threads) < 1:
         raise ValueError(f"TDP_THREADS must be a positive integer, got {threads!r}")
-    ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN)
+    ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
+            real_matrix_scalarize=False)
     _initialised = True
 
 
@@ -74,11 +75,13 @@ def _lane(value, lane, lanes: ti.template()):
 
 @ti.func
 def _differs(a, b, lanes: ti.template()):
+    """1 if any lane of a differs from b. (Taichi 1.7's ``.any()`` of a vector comparison reads only lane 0 when
+    matrices are not scalarised: the comparison is selected into integers first.)"""
     result = 0
     if ti.static(lanes == 0):
         result = ti.i32(a != b)
     else:
-        result = ti.i32((a != b).any())
+        result = ti.select(a != b, 1, 0).max()
     return result
 
 
