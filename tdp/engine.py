@@ -26,6 +26,10 @@ from . import stencil
 LANES = 32
 #: Padding around every array: the stencil's reach, so kernels never test bounds.
 PAD = stencil.REACH
+#: Active tiles of one kind of layer up to which iterations run one after another on the calling thread, in one
+#: launch; beyond, each iteration is a parallel launch. Measured on the 2-core VM: waking the worker threads costs
+#: about 55 µs a launch, and one thread relaxes up to 500-2000 tiles about as fast as two (benchmarks/RESULTS.md).
+SERIAL_TILES = 512
 #: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
@@ -46,7 +50,7 @@ def init_taichi() -> None:
     if not threads.isdigit() or int(threads) < 1:
         raise ValueError(f"TDP_THREADS must be a positive integer, got {threads!r}")
     ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
-            real_matrix_scalarize=False)
+            real_matrix_scalarize=False, cpu_block_dim_adaptive=False)
     _initialised = True
 
 
@@ -135,12 +139,12 @@ def _relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stam
             ti.atomic_add(counts[0], changed)
 
 
-@ti.kernel
-def _relax(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
-           stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
-           sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
-           corner_cutting: ti.template()):
-    """One iteration of the active tiles of one kind of layer (see :func:`_relax_tile`)."""
+@ti.func
+def _relax_kind(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(), tick,
+                counts: ti.template(), sr, sc, cap, lanes: ti.template(), neighbourhood: ti.template(),
+                corner_cutting: ti.template()):
+    """One iteration of the active tiles of one kind of layer (see :func:`_relax_tile`): a parallel loop at a
+    kernel's top level, a serial one inside a loop."""
     counts[0] = 0
     for g, ta, tb in stamps:
         _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
@@ -148,44 +152,49 @@ def _relax(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti
 
 
 @ti.func
-def _relax_both(goal_src: ti.template(), goal_dst: ti.template(), goal_pen: ti.template(),
-                goal_stamps: ti.template(), goal_counts: ti.template(), goal_tick, goal_sr, goal_sc, goal_cap,
-                win_src: ti.template(), win_dst: ti.template(), win_pen: ti.template(), win_stamps: ti.template(),
-                win_counts: ti.template(), win_tick, win_centre, win_cap, neighbourhood: ti.template(),
-                corner_cutting: ti.template()):
-    """One iteration of the goal's tiles and the windows' tiles in a single parallel loop."""
-    goal_counts[0] = 0
-    win_counts[0] = 0
-    goal_rows, goal_cols = goal_stamps.shape[1], goal_stamps.shape[2]
-    win_rows, win_cols = win_stamps.shape[1], win_stamps.shape[2]
-    goal_tiles = goal_rows * goal_cols
-    for t in range(goal_tiles + win_stamps.shape[0] * win_rows * win_cols):
-        if t < goal_tiles:
-            _relax_tile(goal_src, goal_dst, goal_pen, goal_stamps, 0, t // goal_cols, t % goal_cols, goal_tick,
-                        goal_counts, goal_sr, goal_sc, goal_cap, 0, neighbourhood, corner_cutting)
-        else:
-            w = t - goal_tiles
-            g, rest = w // (win_rows * win_cols), w % (win_rows * win_cols)
-            _relax_tile(win_src, win_dst, win_pen, win_stamps, g, rest // win_cols, rest % win_cols, win_tick,
-                        win_counts, win_centre, win_centre, win_cap, LANES, neighbourhood, corner_cutting)
+def _active_tiles(stamps: ti.template(), tick):
+    """The number of tiles stamped for iteration ``tick``."""
+    count = 0
+    for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
+        if stamps[g, a, b] >= tick:
+            count += 1
+    return count
 
 
 @ti.kernel
-def _advance(goal_src: ti.types.ndarray(ndim=3), goal_dst: ti.types.ndarray(ndim=3),
-             goal_pen: ti.types.ndarray(ndim=3), goal_stamps: ti.types.ndarray(ndim=3),
-             goal_counts: ti.types.ndarray(ndim=1), goal_tick: ti.i32, goal_sr: ti.i32, goal_sc: ti.i32,
-             goal_cap: ti.f32, win_src: ti.types.ndarray(ndim=3), win_dst: ti.types.ndarray(ndim=3),
-             win_pen: ti.types.ndarray(ndim=3), win_stamps: ti.types.ndarray(ndim=3),
-             win_counts: ti.types.ndarray(ndim=1), win_tick: ti.i32, win_centre: ti.i32, win_cap: ti.f32,
-             origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2), out: ti.types.ndarray(ndim=3),
-             step: ti.i32, neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """One iteration of every layer in one launch (one parallel loop over the goal's and the windows' tiles), then
-    every layer sampled at ``cells`` into out[step]. One iteration per launch: unrolling several in one kernel
-    makes its compilation grow much faster than its length."""
-    _relax_both(goal_src, goal_dst, goal_pen, goal_stamps, goal_counts, goal_tick, goal_sr, goal_sc, goal_cap,
-                win_src, win_dst, win_pen, win_stamps, win_counts, win_tick, win_centre, win_cap, neighbourhood,
-                corner_cutting)
-    _sample_into(goal_dst, win_dst, origins, cells, win_cap, out, step)
+def _iterate(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
+             stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
+             sc: ti.i32, cap: ti.f32, origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
+             out: ti.types.ndarray(ndim=3), step: ti.i32, lanes: ti.template(), neighbourhood: ti.template(),
+             corner_cutting: ti.template()):
+    """One iteration src -> dst of the active tiles of one kind of layer, the tiles shared out among the threads;
+    then the layers sampled at ``cells`` into out[step] (see :func:`_sample_kind`)."""
+    _relax_kind(src, dst, pen, stamps, tick, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+    _sample_kind(dst, origins, cells, cap, out, step, lanes)
+
+
+@ti.kernel
+def _iterate_serially(a: ti.types.ndarray(ndim=3), b: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
+                      stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
+                      sc: ti.i32, cap: ti.f32, origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
+                      out: ti.types.ndarray(ndim=3), first: ti.i32, steps: ti.i32, limit: ti.i32,
+                      lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template()) -> ti.i32:
+    """Up to ``steps`` iterations of one kind of layer on the calling thread, each sampled into out[first + step],
+    for as long as at most ``limit`` tiles are active: below that, waking the worker threads costs more than they
+    save. ``a`` holds the values and ``b`` receives the next ones; they swap at each iteration. Returns the
+    iterations done."""
+    done = 0
+    ti.loop_config(serialize=True)
+    for step in range(steps):
+        if done == step and _active_tiles(stamps, tick + step) <= limit:
+            if step % 2 == 0:
+                _relax_kind(a, b, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                _sample_kind(b, origins, cells, cap, out, first + step, lanes)
+            else:
+                _relax_kind(b, a, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                _sample_kind(a, origins, cells, cap, out, first + step, lanes)
+            done += 1
+    return done
 
 
 @ti.func
@@ -359,36 +368,29 @@ def _trace(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), g: ti.i
 
 
 @ti.func
-def _sample_into(goal: ti.template(), windows: ti.template(), origins: ti.template(), cells: ti.template(), cap,
-                 out: ti.template(), step):
-    """out[step, k, 0] = the goal layer at cells[k]; out[step, k, 1 + node] = that node's layer (cap outside its
-    window)."""
-    side = windows.shape[1] - 2 * PAD
+def _sample_kind(arr: ti.template(), origins: ti.template(), cells: ti.template(), cap, out: ti.template(), step,
+                 lanes: ti.template()):
+    """out[step, k, column] = each layer of one kind at cells[k]: column 0 for the goal layer (lanes == 0),
+    1 + node for a node layer (its cap outside its window). ``origins`` maps grid to layer coordinates."""
+    rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
     ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
-    for k, g in ti.ndrange(cells.shape[0], windows.shape[0]):
-        if g == 0:
-            out[step, k, 0] = goal[0, cells[k, 0] + PAD, cells[k, 1] + PAD]
-        for lane in ti.static(range(LANES)):
-            node = g * LANES + lane
-            if node < out.shape[2] - 1:
-                a = cells[k, 0] - origins[node, 0]
-                b = cells[k, 1] - origins[node, 1]
+    for k, g in ti.ndrange(cells.shape[0], arr.shape[0]):
+        for lane in ti.static(range(max(lanes, 1))):
+            layer = g * max(lanes, 1) + lane
+            column = layer + ti.static(0 if lanes == 0 else 1)
+            if column < out.shape[2]:
+                a = cells[k, 0] - origins[layer, 0]
+                b = cells[k, 1] - origins[layer, 1]
                 value = cap
-                if 0 <= a < side and 0 <= b < side:
-                    value = windows[g, a + PAD, b + PAD][lane]
-                out[step, k, 1 + node] = value
+                if 0 <= a < rows and 0 <= b < cols:
+                    value = _lane(arr[g, a + PAD, b + PAD], lane, lanes)
+                out[step, k, column] = value
 
 
 @ti.kernel
-def _sample(goal: ti.types.ndarray(ndim=3), windows: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2),
-            cells: ti.types.ndarray(ndim=2), cap: ti.f32, out: ti.types.ndarray(ndim=3)):
-    _sample_into(goal, windows, origins, cells, cap, out, 0)
-
-
-@ti.kernel
-def _sample_goal(goal: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2), out: ti.types.ndarray(ndim=3)):
-    for k in range(cells.shape[0]):
-        out[0, k, 0] = goal[0, cells[k, 0] + PAD, cells[k, 1] + PAD]
+def _sample(arr: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
+            cap: ti.f32, out: ti.types.ndarray(ndim=3), lanes: ti.template()):
+    _sample_kind(arr, origins, cells, cap, out, 0, lanes)
 
 
 # ------------------------------------------------------------------------------------------------------- host class
@@ -418,6 +420,10 @@ class _Layers:
     def values(self):
         return self.buffers[self.current]
 
+    @property
+    def other(self):
+        return self.buffers[1 - self.current]
+
     def activate_all(self) -> None:
         self.stamps.fill(self.tick)
 
@@ -434,12 +440,31 @@ class _Layers:
                self.cols)
         self.activate_cells(cells)
 
-    def relax(self, sr: int, sc: int, cap: float, neighbourhood: int, corner_cutting: bool) -> None:
-        """One Jacobi iteration over the active tiles; ``counts[0]`` then holds the changed cells."""
-        _relax(self.values, self.buffers[1 - self.current], self.pen, self.stamps, self.tick, self.counts, sr, sc,
-               cap, self.lanes, neighbourhood, corner_cutting)
-        self.current = 1 - self.current
-        self.tick += 1
+    def iterate(self, k: int, sr: int, sc: int, cap: float, cells: np.ndarray, out: np.ndarray, neighbourhood: int,
+                corner_cutting: bool) -> None:
+        """k synchronous iterations over the active tiles, the layers sampled at ``cells`` into out[step] after
+        each; ``counts[0]`` then holds the cells the last iteration changed. The iterations run in one serial launch
+        while at most ``SERIAL_TILES`` tiles are active, in one parallel launch each beyond."""
+        done = 0
+        while done < k:
+            done += self._swap(_iterate_serially(self.values, self.other, self.pen, self.stamps, self.tick,
+                                                 self.counts, sr, sc, cap, self.origins, cells, out, done, k - done,
+                                                 SERIAL_TILES, self.lanes, neighbourhood, corner_cutting))
+            if done < k:
+                _iterate(self.values, self.other, self.pen, self.stamps, self.tick, self.counts, sr, sc, cap,
+                         self.origins, cells, out, done, self.lanes, neighbourhood, corner_cutting)
+                done += self._swap(1)
+
+    def _swap(self, iterations: int) -> int:
+        """Account for ``iterations`` done: the buffers swap roles at each."""
+        self.current ^= iterations % 2
+        self.tick += iterations
+        return iterations
+
+
+def _cells_array(cells) -> np.ndarray:
+    """(n, 2) int32, contiguous: how kernels take cells."""
+    return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
 
 
 def _device(array: np.ndarray):
@@ -511,10 +536,7 @@ class Engine:
 
     def step(self, k: int = 1) -> None:
         """Run k synchronous iterations of every layer (only their active tiles)."""
-        for _ in range(k):
-            for layers, sr, sc, cap in self._kinds():
-                layers.relax(sr, sc, cap, self.neighbourhood, self.corner_cutting)
-            self.iterations += 1
+        self._iterate(k, np.zeros((0, 2), np.int32))
 
     def changed(self) -> int:
         """Cells changed by the last iteration, all layers together."""
@@ -547,7 +569,7 @@ class Engine:
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels."""
-        cells = np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+        cells = _cells_array(cells)
         if not len(cells):
             return
         occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
@@ -579,33 +601,23 @@ class Engine:
 
     def sample(self, cells: np.ndarray) -> np.ndarray:
         """Every layer at each of ``cells`` (n, 2): a float32 (n, 1 + nodes) array, column 0 the goal layer."""
-        cells = np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+        cells = _cells_array(cells)
         out = np.empty((1, len(cells), 1 + len(self.nodes)), np.float32)
-        if self._windows is None:
-            _sample_goal(self._goal.values, cells, out)
-        else:
-            _sample(self._goal.values, self._windows.values, self._windows.origins, cells, self.node_cap, out)
+        for layers, _, _, cap in self._kinds():
+            _sample(layers.values, layers.origins, cells, cap, out, layers.lanes)
         return out[0]
 
     def advance(self, k: int, cells: np.ndarray) -> np.ndarray:
-        """Run k synchronous iterations of every layer, one launch each, and return every layer at ``cells`` after
-        each: a float32 (k, n, 1 + nodes) array (as :meth:`sample` per iteration). Needs node layers."""
-        if self._windows is None:
-            raise ValueError("advance() samples node layers; this engine has none (use step())")
-        cells = np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+        """Run k synchronous iterations of every layer and return every layer at ``cells`` after each: a float32
+        (k, n, 1 + nodes) array (as :meth:`sample` after each :meth:`step`), in one kernel launch per kind of
+        layer while few tiles are active."""
+        return self._iterate(k, _cells_array(cells))
+
+    def _iterate(self, k: int, cells: np.ndarray) -> np.ndarray:
         out = np.empty((k, len(cells), 1 + len(self.nodes)), np.float32)
-        goal, windows = self._goal, self._windows
-        centre = self.radius + PAD
-        for step in range(k):
-            _advance(goal.values, goal.buffers[1 - goal.current], goal.pen, goal.stamps, goal.counts, goal.tick,
-                     self.goal[0] + PAD, self.goal[1] + PAD, self.goal_cap,
-                     windows.values, windows.buffers[1 - windows.current], windows.pen, windows.stamps,
-                     windows.counts, windows.tick, centre, self.node_cap, windows.origins, cells, out, step,
-                     self.neighbourhood, self.corner_cutting)
-            for layers in (goal, windows):
-                layers.current = 1 - layers.current
-                layers.tick += 1
-            self.iterations += 1
+        for layers, sr, sc, cap in self._kinds():
+            layers.iterate(k, sr, sc, cap, cells, out, self.neighbourhood, self.corner_cutting)
+        self.iterations += k
         return out
 
     def trace(self, layer: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:

@@ -4,6 +4,7 @@ import math
 import numpy as np
 import pytest
 
+from tdp import engine as engine_module
 from tdp.engine import LANES, Engine
 
 
@@ -118,18 +119,35 @@ def test_a_converged_engine_with_no_change_relaxes_nothing():
     assert engine.changed() > 0
 
 
-def test_advance_equals_step_and_sample_per_iteration():
-    """The fused per-tick kernel gives exactly what iterating and sampling one by one gives."""
+@pytest.mark.parametrize("serial_tiles", [0, 12, 10**6])  # always parallel launches, mixed, always one launch
+def test_advance_equals_single_parallel_steps_and_samples(monkeypatch, serial_tiles):
+    """advance(k) gives exactly what k parallel single iterations, each followed by sample(), give, through map
+    edits and goal moves, whether its iterations run in one serial launch, in parallel launches or mixed."""
+    rng = np.random.default_rng(serial_tiles)
     occupied = random_map(40, 50, 0.2, 1)
     nodes = np.argwhere(~occupied)[::97]
     fused = Engine(occupied, (0, 0), nodes=nodes, node_cap=9.0)
     stepped = Engine(occupied, (0, 0), nodes=nodes, node_cap=9.0)
+    goal_only = Engine(occupied, (0, 0))
     cells = np.vstack([nodes, [[5, 5]]])
-    for k in (1, 4, 3):
+    for tick, k in enumerate((1, 4, 3, 4, 2, 4, 4, 1, 4)):
+        if tick % 3 == 2:
+            edited = np.argwhere(rng.random(occupied.shape) < 0.01)
+            for engine in (fused, stepped, goal_only):
+                engine.set_cells(edited, bool(tick % 2))
+        if tick == 4:
+            for engine in (fused, stepped, goal_only):
+                engine.set_goal((39, 49))
+        monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
         samples = fused.advance(k, cells)
+        goal_samples = goal_only.advance(k, cells)
+        monkeypatch.setattr(engine_module, "SERIAL_TILES", 0)
         for s in range(k):
             stepped.step()
             np.testing.assert_array_equal(samples[s], stepped.sample(cells))
+            np.testing.assert_array_equal(goal_samples[s], stepped.sample(cells)[:, :1])
+        assert fused.changed() == stepped.changed()
+    assert fused.iterations == stepped.iterations
     np.testing.assert_array_equal(fused.goal_distances(), stepped.goal_distances())
-    with pytest.raises(ValueError, match="no"):
-        Engine(occupied, (0, 0)).advance(1, cells)
+    for j in range(len(nodes)):
+        np.testing.assert_array_equal(fused.node_distances(j), stepped.node_distances(j))
