@@ -28,7 +28,7 @@ LANES = 32
 PAD = stencil.REACH
 #: Active tiles of one kind of layer up to which iterations run one after another on the calling thread, in one
 #: launch; beyond, each iteration is a parallel launch. Measured on the 2-core VM: waking the worker threads costs
-#: about 55 µs a launch, and one thread relaxes up to 500-2000 tiles about as fast as two (benchmarks/RESULTS.md).
+#: about 55 µs a launch, and one thread relaxes a dense layer of up to about 1000 tiles as fast as two.
 SERIAL_TILES = 512
 #: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
 TILE = 8
@@ -142,22 +142,31 @@ def _relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stam
 @ti.func
 def _relax_kind(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(), tick,
                 counts: ti.template(), sr, sc, cap, lanes: ti.template(), neighbourhood: ti.template(),
-                corner_cutting: ti.template()):
+                corner_cutting: ti.template(), serial: ti.template()):
     """One iteration of the active tiles of one kind of layer (see :func:`_relax_tile`): a parallel loop at a
-    kernel's top level, a serial one inside a loop."""
+    kernel's top level, ``serial`` loops inside a loop."""
     counts[0] = 0
-    for g, ta, tb in stamps:
-        _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
-                    corner_cutting)
+    if ti.static(serial):  # nested loops: no division per tile (an ndrange scan is 10x slower)
+        for g in range(stamps.shape[0]):
+            for ta in range(stamps.shape[1]):
+                for tb in range(stamps.shape[2]):
+                    _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
+                                corner_cutting)
+    else:
+        for g, ta, tb in stamps:
+            _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
+                        corner_cutting)
 
 
 @ti.func
 def _active_tiles(stamps: ti.template(), tick):
     """The number of tiles stamped for iteration ``tick``."""
     count = 0
-    for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
-        if stamps[g, a, b] >= tick:
-            count += 1
+    for g in range(stamps.shape[0]):
+        for a in range(stamps.shape[1]):
+            for b in range(stamps.shape[2]):
+                if stamps[g, a, b] >= tick:
+                    count += 1
     return count
 
 
@@ -169,7 +178,7 @@ def _iterate(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: 
              corner_cutting: ti.template()):
     """One iteration src -> dst of the active tiles of one kind of layer, the tiles shared out among the threads;
     then the layers sampled at ``cells`` into out[step] (see :func:`_sample_kind`)."""
-    _relax_kind(src, dst, pen, stamps, tick, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+    _relax_kind(src, dst, pen, stamps, tick, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting, False)
     _sample_kind(dst, origins, cells, cap, out, step, lanes)
 
 
@@ -177,21 +186,33 @@ def _iterate(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: 
 def _iterate_serially(a: ti.types.ndarray(ndim=3), b: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
                       stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
                       sc: ti.i32, cap: ti.f32, origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
-                      out: ti.types.ndarray(ndim=3), first: ti.i32, steps: ti.i32, limit: ti.i32,
+                      out: ti.types.ndarray(ndim=3), first: ti.i32, steps: ti.i32, limit: ti.i32, woken: ti.i32,
                       lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template()) -> ti.i32:
     """Up to ``steps`` iterations of one kind of layer on the calling thread, each sampled into out[first + step],
     for as long as at most ``limit`` tiles are active: below that, waking the worker threads costs more than they
     save. ``a`` holds the values and ``b`` receives the next ones; they swap at each iteration. Returns the
-    iterations done."""
+    iterations done.
+
+    An iteration is idle, and skipped, when the previous one changed nothing (counts[0] == 0) and the host has
+    stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier): then no tile is
+    active and both buffers hold the same values."""
     done = 0
     ti.loop_config(serialize=True)
     for step in range(steps):
-        if done == step and _active_tiles(stamps, tick + step) <= limit:
+        busy = counts[0] > 0 or woken >= tick + step
+        serial = done == step
+        if serial and busy:  # (Taichi evaluates both sides of "or": no scan unless needed)
+            serial = _active_tiles(stamps, tick + step) <= limit
+        if serial:
             if step % 2 == 0:
-                _relax_kind(a, b, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                if busy:
+                    _relax_kind(a, b, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood,
+                                corner_cutting, True)
                 _sample_kind(b, origins, cells, cap, out, first + step, lanes)
             else:
-                _relax_kind(b, a, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                if busy:
+                    _relax_kind(b, a, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood,
+                                corner_cutting, True)
                 _sample_kind(a, origins, cells, cap, out, first + step, lanes)
             done += 1
     return done
@@ -426,6 +447,7 @@ class _Layers:
 
     def activate_all(self) -> None:
         self.stamps.fill(self.tick)
+        self.woken = self.tick
 
     def deactivate_all(self) -> None:
         self.stamps.fill(-1)
@@ -433,6 +455,7 @@ class _Layers:
     def activate_cells(self, cells: np.ndarray) -> None:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
         _stamp_cells(self.stamps, cells, self.origins, self.lanes, self.rows, self.cols, self.tick)
+        self.woken = self.tick
 
     def paint(self, cells: np.ndarray, values: np.ndarray, cap: float) -> None:
         """Set the penalties of ``cells`` to ``values`` (0 free, inf occupied) and wake the tiles around them."""
@@ -449,7 +472,8 @@ class _Layers:
         while done < k:
             done += self._swap(_iterate_serially(self.values, self.other, self.pen, self.stamps, self.tick,
                                                  self.counts, sr, sc, cap, self.origins, cells, out, done, k - done,
-                                                 SERIAL_TILES, self.lanes, neighbourhood, corner_cutting))
+                                                 SERIAL_TILES, self.woken, self.lanes, neighbourhood,
+                                                 corner_cutting))
             if done < k:
                 _iterate(self.values, self.other, self.pen, self.stamps, self.tick, self.counts, sr, sc, cap,
                          self.origins, cells, out, done, self.lanes, neighbourhood, corner_cutting)
