@@ -4,7 +4,7 @@
     python -m benchmarks.paper [--quick]
 
 One figure of paths per sweep, as in the paper, plus the curves (ratio to the oracle, turn, time per tick).
-Every run is grid-level and warm (a full episode compiles every kernel first).
+Every run is grid-level and warm (a full episode runs first; Navigator.setup() compiles every kernel).
 """
 from __future__ import annotations
 
@@ -30,7 +30,6 @@ def sweep(name: str, values: list, scenario, oracle_length: float, route) -> lis
     rows = []
     for value in values:
         config = tdp.NavigatorConfig(**options(value))
-        run_navigator(scenario, config, max_ticks=2)  # compiles this K's fused kernel
         record, navigator = run_navigator(scenario, config)
         detections = sum(d.relevant for r in record["results"] for d in r.detections)
         rows.append({"sweep": name, "value": value, "nodes_placed": len(navigator.nodes), "detections": detections,
@@ -91,7 +90,7 @@ def main() -> None:
     route = unblocked_route(scenario)
     oracle = oracle_run(scenario, tdp.NavigatorConfig(), scenario.max_ticks)
     plain, _ = run_navigator(scenario, tdp.NavigatorConfig(accelerating=False, updates_per_move=1))
-    run_navigator(scenario, tdp.NavigatorConfig(updates_per_move=1))  # warm-up: every kernel compiles here
+    run_navigator(scenario, tdp.NavigatorConfig(updates_per_move=1))  # warm-up: caches (setup() compiles the kernels)
     baseline = blockage_metrics(scenario, plain, oracle["length"], route)
     print(f"  plain DP, K = 1: ratio {baseline['ratio']:.3f}")
     suffix = "-quick" if args.quick else ""

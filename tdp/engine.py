@@ -4,12 +4,17 @@ The only module of tdp that imports taichi. Layout (DESIGN 4):
 
 * the goal layer is one (H + 4) x (W + 4) float32 array, two cells of padding on each side;
 * node layers are windows of side 2r + 1 around their nodes, r = ceil(cap); ``LANES`` of them are packed per cell
-  as a ``ti.types.vector`` so that one relaxation updates them all with SIMD. Group g, lane l is node g*LANES + l;
-  unused lanes are walled in and stay at the cap;
+  as a ``ti.types.vector`` so that one relaxation updates them all with SIMD (Taichi keeps them as LLVM vectors,
+  ``real_matrix_scalarize=False``, which the JIT lowers to the host's widest registers). Group g, lane l is node
+  g*LANES + l; unused lanes are walled in and stay at the cap;
 * an obstacle holds the cap (eq. 5), written into both buffers the moment a cell becomes occupied, so a move
   into it yields at least the cap and never wins the minimum; the cells a move crosses are checked in a penalty
   array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's candidate is
   ``D[Z] + |V - Z| + pen[crossed cells]``.
+
+Iterations: each kind of layer (goal, node windows) is split into 8 x 8 tiles, relaxed only when active (their
+inputs changed in the previous iteration). While few tiles are active, k iterations run one after another in a
+single launch on the calling thread; a busy iteration gets a parallel launch of its own.
 
 All kernels take ndarrays, so a kernel compiles once per (neighbourhood, corner rule, layer kind) and not once per
 map. Kernels must live in a ``.py`` file: Taichi reads their source.
@@ -33,12 +38,17 @@ SERIAL_TILES = 512
 #: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
+_NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 
 _initialised = False
 
 
 def init_taichi() -> None:
-    """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2)."""
+    """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2).
+
+    Packed layers stay LLVM vectors (``real_matrix_scalarize=False``: Taichi's CPU optimiser otherwise targets
+    generic x86-64, 4 floats wide); parallel loops hand out 32 iterations at a time (the adaptive block size gives
+    at least 512, so a small map's tiles all went to one thread)."""
     global _initialised
     if _initialised:
         return
@@ -479,6 +489,23 @@ class _Layers:
                          self.origins, cells, out, done, self.lanes, neighbourhood, corner_cutting)
                 done += self._swap(1)
 
+    def warm_up(self, neighbourhood: int, corner_cutting: bool) -> None:
+        """Compile this kind's kernels by launching each on nothing (no cell, no step, no tile active at _NEVER):
+        no value, stamp or count of the layers changes."""
+        nowhere = np.zeros((0, 2), np.int32)
+        out = np.zeros((1, 0, 1), np.float32)
+        counts = ti.ndarray(ti.i32, (1,))
+        _iterate(self.values, self.other, self.pen, self.stamps, _NEVER, counts, 0, 0, 0.0, self.origins, nowhere,
+                 out, 0, self.lanes, neighbourhood, corner_cutting)
+        _iterate_serially(self.values, self.other, self.pen, self.stamps, _NEVER, counts, 0, 0, 0.0, self.origins,
+                          nowhere, out, 0, 0, 0, _NEVER, self.lanes, neighbourhood, corner_cutting)
+        _paint(self.pen, self.buffers[0], self.buffers[1], self.origins, nowhere, np.zeros(0, np.float32), 0.0,
+               self.lanes, self.rows, self.cols)
+        _stamp_cells(self.stamps, nowhere, self.origins, self.lanes, self.rows, self.cols, _NEVER)
+        _sample(self.values, self.origins, nowhere, 0.0, out, self.lanes)
+        _trace(self.values, self.pen, 0, 0, PAD, PAD, PAD, PAD, 0.0, np.zeros((1, 2), np.int32), self.lanes,
+               neighbourhood, corner_cutting)
+
     def _swap(self, iterations: int) -> int:
         """Account for ``iterations`` done: the buffers swap roles at each."""
         self.current ^= iterations % 2
@@ -557,6 +584,15 @@ class Engine:
         """Make the next iteration relax every tile (a dense iteration; the result is the same)."""
         for layers, _, _, _ in self._kinds():
             layers.activate_all()
+
+    def warm_up(self) -> None:
+        """Compile every kernel that iterations, map edits, goal moves and reads of this engine use, changing nothing.
+
+        Taichi compiles a kernel on its first launch (about a second; later processes load it from Taichi's offline
+        cache), and the parallel iteration is first launched when a large change arrives: warming up in the setup
+        phase keeps that pause out of the control loop. :meth:`tdp.Navigator.setup` calls it."""
+        for layers, _, _, _ in self._kinds():
+            layers.warm_up(self.neighbourhood, self.corner_cutting)
 
     def step(self, k: int = 1) -> None:
         """Run k synchronous iterations of every layer (only their active tiles)."""

@@ -151,8 +151,10 @@ class Navigator:
         return self.engine.goal
 
     def setup(self) -> int:
-        """The setup phase: converge every layer (robot stationary); returns the rounds it took."""
+        """The setup phase (robot stationary): compile the engine's kernels, converge every layer; returns the
+        rounds converging took."""
         self._readings = None
+        self.engine.warm_up()
         return self.engine.converge()
 
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:

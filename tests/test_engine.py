@@ -151,3 +151,21 @@ def test_advance_equals_single_parallel_steps_and_samples(monkeypatch, serial_ti
     np.testing.assert_array_equal(fused.goal_distances(), stepped.goal_distances())
     for j in range(len(nodes)):
         np.testing.assert_array_equal(fused.node_distances(j), stepped.node_distances(j))
+
+
+def test_warm_up_changes_nothing():
+    occupied = random_map(30, 30, 0.2, 4)
+    nodes = np.argwhere(~occupied)[::60]
+    warmed, plain = (Engine(occupied, (0, 0), nodes=nodes, node_cap=8.0) for _ in range(2))
+    for engine in (warmed, plain):
+        engine.step(3)
+    warmed.warm_up()
+    assert warmed.changed() == plain.changed() > 0
+    assert warmed.iterations == plain.iterations
+    cells = np.argwhere(~occupied)[::7]
+    np.testing.assert_array_equal(warmed.sample(cells), plain.sample(cells))
+    for engine in (warmed, plain):
+        engine.set_cells([[10, 10], [11, 11]], True)
+    np.testing.assert_array_equal(warmed.advance(4, cells), plain.advance(4, cells))
+    for j in range(len(nodes)):
+        np.testing.assert_array_equal(warmed.node_distances(j), plain.node_distances(j))
