@@ -207,24 +207,22 @@ def _iterate_serially(a: ti.types.ndarray(ndim=3), b: ti.types.ndarray(ndim=3), 
     stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier): then no tile is
     active and both buffers hold the same values."""
     done = 0
-    ti.loop_config(serialize=True)
-    for step in range(steps):
-        busy = counts[0] > 0 or woken >= tick + step
-        serial = done == step
-        if serial and busy:  # (Taichi evaluates both sides of "or": no scan unless needed)
-            serial = _active_tiles(stamps, tick + step) <= limit
-        if serial:
-            if step % 2 == 0:
-                if busy:
-                    _relax_kind(a, b, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood,
-                                corner_cutting, True)
-                _sample_kind(b, origins, cells, cap, out, first + step, lanes)
-            else:
-                if busy:
-                    _relax_kind(b, a, pen, stamps, tick + step, counts, sr, sc, cap, lanes, neighbourhood,
-                                corner_cutting, True)
-                _sample_kind(a, origins, cells, cap, out, first + step, lanes)
-            done += 1
+    while done < steps:
+        busy = counts[0] > 0 or woken >= tick + done
+        if busy:
+            if _active_tiles(stamps, tick + done) > limit:
+                break
+        if done % 2 == 0:
+            if busy:
+                _relax_kind(a, b, pen, stamps, tick + done, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting,
+                            True)
+            _sample_kind(b, origins, cells, cap, out, first + done, lanes)
+        else:
+            if busy:
+                _relax_kind(b, a, pen, stamps, tick + done, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting,
+                            True)
+            _sample_kind(a, origins, cells, cap, out, first + done, lanes)
+        done += 1
     return done
 
 
@@ -260,42 +258,85 @@ def _stamp_cells(stamps: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=
                             stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
 
 
-@ti.kernel
-def _settle(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
-            tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
-            corner_cutting: ti.template()) -> ti.i32:
-    """Asynchronous relaxation in place: each active tile (stamp >= ``tick``) sweeps its cells, alternately
-    forwards and backwards, until they stop changing (in cache), then stamps ``tick + 1`` on the neighbouring tiles
-    that its changed border cells reach. Returns the number of tiles that changed.
+@ti.func
+def _settle_tile(arr: ti.template(), pen: ti.template(), stamps: ti.template(), g, ta, tb, tick, sr, sc, cap,
+                 lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template()):
+    """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``): sweep its cells,
+    alternately forwards and backwards, until they stop changing (in cache), stamping ``tick + 1`` on the
+    neighbouring tiles that its changed border cells reach. Returns 1 if the tile changed.
 
     From the initial caps values only fall and every value read is the length of some path to the source, so
     races between threads are benign and the tiles settle to the unique fixed point of eqs. 5 and 10.
     """
     touched = 0
-    rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
-    for g, ta, tb in stamps:
-        if stamps[g, ta, tb] >= tick:
-            passes, changed_here = 0, 1
-            while changed_here and passes < 4 * TILE:
-                changed_here = 0
-                for k in range(TILE * TILE):
-                    kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
-                    u, v = kk // TILE, kk % TILE
-                    r, c = ta * TILE + u, tb * TILE + v
-                    if r < rows and c < cols:
-                        new = _updated(arr, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood,
-                                       corner_cutting)
-                        if _differs(new, arr[g, r + PAD, c + PAD], lanes):
-                            arr[g, r + PAD, c + PAD] = new
-                            changed_here = 1
-                            if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
-                passes += 1
-            if passes > 1:
-                touched += 1
-            if changed_here:
-                stamps[g, ta, tb] = tick + 1
+    if stamps[g, ta, tb] >= tick:
+        rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
+        passes, changed_here = 0, 1
+        while changed_here and passes < 4 * TILE:
+            changed_here = 0
+            for k in range(TILE * TILE):
+                kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
+                u, v = kk // TILE, kk % TILE
+                r, c = ta * TILE + u, tb * TILE + v
+                if r < rows and c < cols:
+                    new = _updated(arr, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood, corner_cutting)
+                    if _differs(new, arr[g, r + PAD, c + PAD], lanes):
+                        arr[g, r + PAD, c + PAD] = new
+                        changed_here = 1
+                        if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                            _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+            passes += 1
+        if passes > 1:
+            touched = 1
+        if changed_here:
+            stamps[g, ta, tb] = tick + 1
     return touched
+
+
+@ti.func
+def _settle_kind(arr: ti.template(), pen: ti.template(), stamps: ti.template(), tick, sr, sc, cap,
+                 lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template(),
+                 serial: ti.template()):
+    """One round of :func:`_settle_tile` over every tile of one kind of layer: a parallel loop at a kernel's top
+    level, ``serial`` loops inside a loop. Returns the number of tiles that changed."""
+    touched = 0
+    if ti.static(serial):
+        for g in range(stamps.shape[0]):
+            for ta in range(stamps.shape[1]):
+                for tb in range(stamps.shape[2]):
+                    touched += _settle_tile(arr, pen, stamps, g, ta, tb, tick, sr, sc, cap, lanes, neighbourhood,
+                                            corner_cutting)
+    else:
+        for g, ta, tb in stamps:
+            touched += _settle_tile(arr, pen, stamps, g, ta, tb, tick, sr, sc, cap, lanes, neighbourhood,
+                                    corner_cutting)
+    return touched
+
+
+@ti.kernel
+def _settle(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
+            tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
+            corner_cutting: ti.template()) -> ti.i32:
+    """One round of settling, the tiles shared out among the threads; returns the number of tiles that changed."""
+    return _settle_kind(arr, pen, stamps, tick, sr, sc, cap, lanes, neighbourhood, corner_cutting, False)
+
+
+@ti.kernel
+def _settle_serially(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
+                     tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, rounds: ti.i32, limit: ti.i32,
+                     result: ti.types.ndarray(ndim=1), lanes: ti.template(), neighbourhood: ti.template(),
+                     corner_cutting: ti.template()):
+    """Up to ``rounds`` rounds of settling on the calling thread, until one changes no tile or more than ``limit``
+    tiles are active. result[0] = the rounds done, result[1] = the tiles the last of them changed (0: settled)."""
+    done, touched = 0, 1
+    while done < rounds and touched > 0:
+        if _active_tiles(stamps, tick + done) > limit:
+            break
+        touched = _settle_kind(arr, pen, stamps, tick + done, sr, sc, cap, lanes, neighbourhood, corner_cutting,
+                               True)
+        done += 1
+    result[0] = done
+    result[1] = touched
 
 
 @ti.kernel
@@ -489,6 +530,26 @@ class _Layers:
                          self.origins, cells, out, done, self.lanes, neighbourhood, corner_cutting)
                 done += self._swap(1)
 
+    def settle(self, sr: int, sc: int, cap: float, max_rounds: int | None, neighbourhood: int,
+               corner_cutting: bool) -> tuple[int, bool]:
+        """Rounds of in-place tile settling until one changes no tile, or ``max_rounds``; returns (rounds, settled).
+        Rounds run one after another in one launch while at most ``SERIAL_TILES`` tiles are active."""
+        limit = _NEVER if max_rounds is None else max_rounds
+        result = np.zeros(2, np.int32)
+        rounds, touched = 0, 1
+        while touched and rounds < limit:
+            _settle_serially(self.values, self.pen, self.stamps, self.tick, sr, sc, cap, limit - rounds,
+                             SERIAL_TILES, result, self.lanes, neighbourhood, corner_cutting)
+            done, touched = int(result[0]), int(result[1])
+            self.tick += done
+            rounds += done
+            if touched and rounds < limit:
+                touched = _settle(self.values, self.pen, self.stamps, self.tick, sr, sc, cap, self.lanes,
+                                  neighbourhood, corner_cutting)
+                self.tick += 1
+                rounds += 1
+        return rounds, not touched
+
     def warm_up(self, neighbourhood: int, corner_cutting: bool) -> None:
         """Compile this kind's kernels by launching each on nothing (no cell, no step, no tile active at _NEVER):
         no value, stamp or count of the layers changes."""
@@ -503,6 +564,9 @@ class _Layers:
                self.lanes, self.rows, self.cols)
         _stamp_cells(self.stamps, nowhere, self.origins, self.lanes, self.rows, self.cols, _NEVER)
         _sample(self.values, self.origins, nowhere, 0.0, out, self.lanes)
+        _settle(self.values, self.pen, self.stamps, _NEVER, 0, 0, 0.0, self.lanes, neighbourhood, corner_cutting)
+        _settle_serially(self.values, self.pen, self.stamps, _NEVER, 0, 0, 0.0, 0, 0, np.zeros(2, np.int32),
+                         self.lanes, neighbourhood, corner_cutting)
         _trace(self.values, self.pen, 0, 0, PAD, PAD, PAD, PAD, 0.0, np.zeros((1, 2), np.int32), self.lanes,
                neighbourhood, corner_cutting)
 
@@ -603,27 +667,24 @@ class Engine:
         return int(sum(layers.counts[0] for layers, _, _, _ in self._kinds()))
 
     def converge(self, max_rounds: int | None = None) -> int:
-        """Relax from the initial state to the fixed point; return the rounds (kernel launches) it took.
+        """Relax from the initial state to the fixed point; return the rounds it took (the larger count of the two
+        kinds of layer).
 
         Each round settles every active tile in place (several sweeps in cache) and wakes the neighbours its border
         changes reach; it ends when no tile changes. The fixed point of eqs. 5 and 10 is unique, so the result
-        equals what synchronous iterations reach, bit for bit.
+        equals what synchronous iterations reach, bit for bit. While few tiles are active, rounds run one after
+        another in a single launch.
         """
         self.reset()
-        rounds, touched = 0, 1
-        while touched and (max_rounds is None or rounds < max_rounds):
-            touched = 0
-            for layers, sr, sc, cap in self._kinds():
-                touched += _settle(layers.values, layers.pen, layers.stamps, layers.tick, sr, sc, cap, layers.lanes,
-                                   self.neighbourhood, self.corner_cutting)
-                layers.tick += 1
-            rounds += 1
-        for layers, _, _, _ in self._kinds():
-            layers.buffers[1 - layers.current].copy_from(layers.values)
-            if touched:
-                layers.activate_all()
-            else:
+        rounds = 0
+        for layers, sr, sc, cap in self._kinds():
+            done, settled = layers.settle(sr, sc, cap, max_rounds, self.neighbourhood, self.corner_cutting)
+            rounds = max(rounds, done)
+            layers.other.copy_from(layers.values)
+            if settled:
                 layers.deactivate_all()
+            else:
+                layers.activate_all()
         return rounds
 
     # -- edits -------------------------------------------------------------------------------------------------

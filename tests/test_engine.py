@@ -64,11 +64,14 @@ def test_trace_follows_a_node_layer_to_its_node():
     assert engine.trace(1, (0, 0), 50) == []  # outside its vision
 
 
-def test_converge_equals_synchronous_iteration_for_node_layers_too():
+@pytest.mark.parametrize("serial_tiles", [0, 3, 10**6])  # rounds in parallel launches, mixed, all in one launch
+def test_converge_equals_synchronous_iteration_for_node_layers_too(monkeypatch, serial_tiles):
     occupied = random_map(25, 25, 0.25, 5)
     nodes = np.argwhere(~occupied)[::37]
     swept = Engine(occupied, tuple(np.argwhere(~occupied)[0]), nodes=nodes, node_cap=9.0)
-    swept.converge()
+    monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
+    assert swept.converge() > 1
+    monkeypatch.undo()
     jacobi = Engine(occupied, tuple(np.argwhere(~occupied)[0]), nodes=nodes, node_cap=9.0)
     jacobi.step()
     while jacobi.changed():
@@ -169,3 +172,22 @@ def test_warm_up_changes_nothing():
     np.testing.assert_array_equal(warmed.advance(4, cells), plain.advance(4, cells))
     for j in range(len(nodes)):
         np.testing.assert_array_equal(warmed.node_distances(j), plain.node_distances(j))
+
+
+@pytest.mark.parametrize("serial_tiles", [0, 10**6])
+def test_converge_cut_short_by_max_rounds_leaves_iterations_to_finish_the_job(monkeypatch, serial_tiles):
+    occupied = random_map(40, 40, 0.3, 8)
+    nodes = np.argwhere(~occupied)[::53]
+    goal = tuple(np.argwhere(~occupied)[0])
+    full = Engine(occupied, goal, nodes=nodes, node_cap=12.0)
+    full.converge()
+    cut = Engine(occupied, goal, nodes=nodes, node_cap=12.0)
+    monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
+    assert cut.converge(max_rounds=1) == 1
+    cut.step()
+    assert cut.changed() > 0  # not there yet: the cut-short engine keeps every tile active
+    while cut.changed():
+        cut.step()
+    np.testing.assert_array_equal(cut.goal_distances(), full.goal_distances())
+    for j in range(len(nodes)):
+        np.testing.assert_array_equal(cut.node_distances(j), full.node_distances(j))
