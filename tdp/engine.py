@@ -102,13 +102,15 @@ def _differs(a, b, lanes: ti.template()):
 @ti.func
 def _best_candidate(src: ti.template(), pen: ti.template(), g, i, j, cap, lanes: ti.template(),
                     neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """min(cap, min over allowed moves of D[Z] + |V - Z|): the last case of eqs. 5 and 10."""
+    """min(cap, min over allowed moves of D[Z] + |V - Z|): the last case of eqs. 5 and 10. The minimum is a
+    select: ``ti.min`` lowers to LLVM's NaN-aware minnum (a compare and a blend more per move), and no value here
+    is NaN (the sums are finite or +inf)."""
     best = _broadcast(cap, lanes)
     for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
         cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost)
         for c in ti.static(m.crossed):
             cand += pen[g, i + c[0], j + c[1]]
-        best = ti.min(best, cand)
+        best = ti.select(cand < best, cand, best)
     return best
 
 
