@@ -41,6 +41,7 @@ _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 
 _initialised = False
+_on_cpu = True
 
 
 def init_taichi() -> None:
@@ -49,7 +50,7 @@ def init_taichi() -> None:
     Packed layers stay LLVM vectors (``real_matrix_scalarize=False``: Taichi's CPU optimiser otherwise targets
     generic x86-64, 4 floats wide); parallel loops hand out 32 iterations at a time (the adaptive block size gives
     at least 512, so a small map's tiles all went to one thread)."""
-    global _initialised
+    global _initialised, _on_cpu
     if _initialised:
         return
     arch_name = os.environ.get("TDP_ARCH", "cpu")
@@ -62,6 +63,13 @@ def init_taichi() -> None:
     ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
             real_matrix_scalarize=False, cpu_block_dim_adaptive=False)
     _initialised = True
+    _on_cpu = arch == ti.cpu
+
+
+def _serial_limit() -> int:
+    """SERIAL_TILES on the CPU; on a GPU one thread is far slower than a launch, so every busy iteration is
+    parallel there."""
+    return SERIAL_TILES if _on_cpu else 0
 
 
 # --------------------------------------------------------------------------------------------------- helpers (ti.func)
@@ -525,7 +533,7 @@ class _Layers:
         while done < k:
             done += self._swap(_iterate_serially(self.values, self.other, self.pen, self.stamps, self.tick,
                                                  self.counts, sr, sc, cap, self.origins, cells, out, done, k - done,
-                                                 SERIAL_TILES, self.woken, self.lanes, neighbourhood,
+                                                 _serial_limit(), self.woken, self.lanes, neighbourhood,
                                                  corner_cutting))
             if done < k:
                 _iterate(self.values, self.other, self.pen, self.stamps, self.tick, self.counts, sr, sc, cap,
@@ -541,7 +549,7 @@ class _Layers:
         rounds, touched = 0, 1
         while touched and rounds < limit:
             _settle_serially(self.values, self.pen, self.stamps, self.tick, sr, sc, cap, limit - rounds,
-                             SERIAL_TILES, result, self.lanes, neighbourhood, corner_cutting)
+                             _serial_limit(), result, self.lanes, neighbourhood, corner_cutting)
             done, touched = int(result[0]), int(result[1])
             self.tick += done
             rounds += done
