@@ -25,6 +25,11 @@ def maps_with_goal(draw):
     return occupied, corner
 
 
+def field_on(occupied: np.ndarray, goal: tuple[int, int], **options) -> tdp.DistanceField:
+    """A DistanceField on the bool map ``occupied``."""
+    return tdp.DistanceField(tdp.GridMap(occupied), goal, **options)
+
+
 def assert_same_distances(ours: np.ndarray, reference: np.ndarray) -> None:
     assert ours.dtype == np.float32
     assert not np.isnan(ours).any()
@@ -37,8 +42,7 @@ def assert_same_distances(ours: np.ndarray, reference: np.ndarray) -> None:
 @given(maps_with_goal(), st.sampled_from([4, 8, 16]), st.booleans())
 def test_converged_field_equals_dijkstra(map_goal, neighbourhood, corner_cutting):
     occupied, goal = map_goal
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=neighbourhood,
-                              corner_cutting=corner_cutting)
+    field = field_on(occupied, goal, neighbourhood=neighbourhood, corner_cutting=corner_cutting)
     field.converge()
     assert_same_distances(field.distances(), distances_to(occupied, goal, neighbourhood, corner_cutting))
 
@@ -47,12 +51,10 @@ def test_converged_field_equals_dijkstra(map_goal, neighbourhood, corner_cutting
 @given(maps_with_goal(), st.sampled_from([4, 8, 16]), st.booleans())
 def test_synchronous_iterations_reach_the_same_fixed_point_bit_for_bit(map_goal, neighbourhood, corner_cutting):
     occupied, goal = map_goal
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=neighbourhood,
-                              corner_cutting=corner_cutting)
+    field = field_on(occupied, goal, neighbourhood=neighbourhood, corner_cutting=corner_cutting)
     field.converge()
     swept = field.distances().copy()
-    jacobi = tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=neighbourhood,
-                               corner_cutting=corner_cutting)
+    jacobi = field_on(occupied, goal, neighbourhood=neighbourhood, corner_cutting=corner_cutting)
     while jacobi.step():
         pass
     np.testing.assert_array_equal(jacobi.distances(), swept)
@@ -62,7 +64,7 @@ def test_synchronous_iterations_reach_the_same_fixed_point_bit_for_bit(map_goal,
 @given(maps_with_goal(), st.sampled_from([4, 8, 16]), st.integers(0, 12))
 def test_after_k_iterations_exactly_the_cells_within_k_moves_are_finite(map_goal, neighbourhood, k):
     occupied, goal = map_goal
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=neighbourhood)
+    field = field_on(occupied, goal, neighbourhood=neighbourhood)
     field.step(k)
     hops = distances_to(occupied, goal, neighbourhood, hops=True)
     np.testing.assert_array_equal(np.isfinite(field.distances()), hops <= k)
@@ -71,7 +73,7 @@ def test_after_k_iterations_exactly_the_cells_within_k_moves_are_finite(map_goal
 
 def test_d_max_caps_every_value():
     occupied = np.zeros((20, 20), bool)
-    field = tdp.DistanceField(tdp.GridMap(occupied), (0, 0), d_max=7.5)
+    field = field_on(occupied, (0, 0), d_max=7.5)
     field.converge()
     reference = np.minimum(distances_to(occupied, (0, 0)), 7.5)
     np.testing.assert_allclose(field.distances(), reference, rtol=1e-6)
@@ -90,7 +92,7 @@ def open_map_with_gap_wall():
 def test_wall_makes_values_rise_to_the_new_distances_and_removal_restores_them():
     occupied, wall = open_map_with_gap_wall()
     goal = (12, 23)
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal)
+    field = field_on(occupied, goal)
     field.converge()
     before = field.distances().copy()
 
@@ -111,8 +113,8 @@ def test_wall_makes_values_rise_to_the_new_distances_and_removal_restores_them()
 
 def test_set_occupied_accepts_cells_and_masks_alike():
     occupied, wall = open_map_with_gap_wall()
-    by_mask = tdp.DistanceField(tdp.GridMap(occupied), (0, 0))
-    by_cells = tdp.DistanceField(tdp.GridMap(occupied), (0, 0))
+    by_mask = field_on(occupied, (0, 0))
+    by_cells = field_on(occupied, (0, 0))
     by_mask.set_occupied(wall)
     by_cells.set_occupied([tuple(c) for c in np.argwhere(wall)])
     by_mask.converge()
@@ -136,7 +138,7 @@ def test_path_from_every_reachable_cell_reaches_the_goal_with_its_distance(neigh
     occupied = np.random.default_rng(7).random((18, 22)) < 0.3
     goal = (9, 11)
     occupied[goal] = False
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=neighbourhood)
+    field = field_on(occupied, goal, neighbourhood=neighbourhood)
     field.converge()
     d = field.distances()
     for start in map(tuple, np.argwhere(~occupied)):
@@ -163,10 +165,10 @@ def test_successor_ties_follow_straight_then_diagonal_then_knight():
 
 def test_diagonal_gap_is_closed_without_corner_cutting_and_open_with_it():
     occupied = np.array([[0, 1], [1, 0]], bool)
-    strict = tdp.DistanceField(tdp.GridMap(occupied), (0, 0), neighbourhood=8)
+    strict = field_on(occupied, (0, 0), neighbourhood=8)
     strict.converge()
     assert math.isinf(strict.distance((1, 1)))
-    cutting = tdp.DistanceField(tdp.GridMap(occupied), (0, 0), neighbourhood=8, corner_cutting=True)
+    cutting = field_on(occupied, (0, 0), neighbourhood=8, corner_cutting=True)
     cutting.converge()
     assert cutting.distance((1, 1)) == pytest.approx(math.sqrt(2))
 
@@ -176,7 +178,7 @@ def test_knight_move_needs_both_crossed_cells_free():
     for blocked in [(0, 1), (1, 1)]:
         occupied = np.zeros((2, 3), bool)
         occupied[blocked] = True
-        field = tdp.DistanceField(tdp.GridMap(occupied), (1, 2), neighbourhood=16)
+        field = field_on(occupied, (1, 2), neighbourhood=16)
         field.converge()
         assert field.distance((0, 0)) > math.sqrt(5) + 1e-6
     field = tdp.DistanceField(tdp.GridMap(np.zeros((2, 3), bool)), (1, 2))
@@ -203,7 +205,7 @@ def test_bad_arguments_raise_clear_errors(kwargs, message):
 def test_bad_queries_and_edits_raise_clear_errors():
     occupied = np.zeros((4, 4), bool)
     occupied[1, 1] = True
-    field = tdp.DistanceField(tdp.GridMap(occupied), (0, 0))
+    field = field_on(occupied, (0, 0))
     with pytest.raises(ValueError, match="outside"):
         field.distance((4, 0))
     with pytest.raises(ValueError, match="obstacle"):
