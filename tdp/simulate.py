@@ -18,7 +18,7 @@ from .world import Scenario, box_distance
 @dataclass
 class Episode:
     """Metrics of one run (DESIGN 6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
-    max; the first ticks include loading the compiled kernels)."""
+    max; the kernels are compiled in the setup phase, before the first tick)."""
 
     scenario: str
     config: dict
@@ -160,8 +160,7 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
             if tick % 25 == 0:
                 print(f"  [{scenario.name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
 
-    start_grid = GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
-    navigator = Navigator(start_grid, scenario.start, scenario.goal, config)
+    navigator = Navigator(_start_grid(scenario), scenario.start, scenario.goal, config)
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
     edges = navigator.node_edges()
@@ -173,8 +172,13 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
 
 def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> dict:
     """The oracle's run of ``scenario``: a dict with its ``length`` (cells), ``trajectory``, ``reached``, ``ticks``."""
-    start_grid = GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
-    return run_planner(scenario, _Oracle(start_grid, scenario.start, scenario.goal, config), config, max_ticks)
+    oracle = _Oracle(_start_grid(scenario), scenario.start, scenario.goal, config)
+    return run_planner(scenario, oracle, config, max_ticks)
+
+
+def _start_grid(scenario: Scenario) -> GridMap:
+    """The scenario's map as it stands at tick 0 (its obstacles at their first positions)."""
+    return GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
 
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
