@@ -4,7 +4,7 @@
 
 Random maps (20 % obstacles) of growing size and the MovingAI maps in ../shared/data (skipped when absent). The
 graph is built once and timed apart; Dijkstra's solve and converge() are warm medians of repeats in the same
-process; the results are checked equal. Also counted: converge()'s rounds (kernel launches), and, up to
+process; the results are checked equal. Also counted: converge()'s rounds of tile settling, and, up to
 512 x 512, the synchronous (Jacobi) iterations that step() needs to reach the same fixed point.
 """
 from __future__ import annotations

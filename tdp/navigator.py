@@ -201,8 +201,8 @@ class Navigator:
         return result
 
     def _iterate(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
-        """K DP iterations; with nodes, the monitor observes the pair distances after each (one kernel launch per
-        iteration, sampling included). Returns the newly blocked pairs with their iteration, and the seconds spent
+        """K DP iterations; with nodes, the monitor observes the pair distances after each (the engine samples
+        them as it iterates). Returns the newly blocked pairs with their iteration, and the seconds spent
         in DP and monitor."""
         k = self.config.updates_per_move
         self._since_detection += k
