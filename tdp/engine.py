@@ -490,7 +490,8 @@ class _Layers:
         self.origins = _device(origins.astype(np.int32))
         self.stamps = ti.ndarray(ti.i32, (groups, -(-rows // TILE), -(-cols // TILE)))
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
-        self.counts = ti.ndarray(ti.i32, (1,))
+        self.woken = 0  # the latest iteration the host stamped tiles for (activate_all, activate_cells)
+        self.counts = ti.ndarray(ti.i32, (1,))  # cells the last iteration changed
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
