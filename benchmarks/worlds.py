@@ -1,0 +1,221 @@
+"""Random dynamic worlds nobody tuned for: accelerating nodes against plain DP, D* Lite and the oracle.
+
+    python -m benchmarks.worlds [--quick] [--seeds N] [--sizes 100 200] [--no-dstar]
+
+Six seeded families (``tdp.random_worlds``) at 100 x 100 and 200 x 200; accelerating nodes and plain DP at K = 1
+and 4 (DP iterations per move); D* Lite (plain Python, same graph) and the oracle (exact distances every tick)
+once per world. Per family, K and planner: worlds, reached %, collisions, hits (a box drove onto the robot), mean
+and max ratio to the oracle (over the worlds every planner reached), worlds where accelerating nodes are worse
+than plain DP by more than 0.01, blockage detections and the fraction justified by the exact pair distances,
+wait ticks (and how many of them had a legal move towards the goal), and the median planner time per tick.
+
+A detection of pair (a, b) at tick t is *justified* when the exact distance between a and b (scipy's Dijkstra on
+each tick's map, independent of tdp) rose by at least U (``detect_rise``) between two ticks of the window the
+detection can be reacting to: the ticks [t - L, t] with L = ceil((J + DmaxQ) / K) + 1 (news of a change reaches
+a pair within DmaxQ iterations, and the test looks J iterations back).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+from scipy.sparse.csgraph import dijkstra
+
+import tdp
+from benchmarks.baselines.dstar_lite import DStarLite
+from benchmarks.common import machine, print_table, quick_parser, write_json
+from benchmarks.reference_graph import grid_graph
+from tdp.random_worlds import CUTTING, FAMILIES, make_world
+from tdp.simulate import oracle_run, run_planner
+
+KS = (1, 4)
+
+
+class PairTruth:
+    """Exact node-to-node distances on each tick's map of one world (scipy's Dijkstra), cached per tick."""
+
+    def __init__(self, scenario: tdp.Scenario, nodes: np.ndarray, limit: float):
+        self.scenario, self.nodes, self.limit = scenario, nodes, limit
+        self._cache: dict[int, np.ndarray] = {}
+
+    def at(self, tick: int) -> np.ndarray:
+        """(n, n) exact distances between the nodes at ``tick``: inf beyond ``limit``, nan where a node is covered
+        (a covered node has no distance to speak of)."""
+        if tick not in self._cache:
+            occupied = self.scenario.occupancy(tick)
+            cols = occupied.shape[1]
+            index = self.nodes[:, 0] * cols + self.nodes[:, 1]
+            found = dijkstra(grid_graph(occupied), indices=index, limit=self.limit)[:, index]
+            covered = occupied[self.nodes[:, 0], self.nodes[:, 1]]
+            found[covered, :] = found[:, covered] = np.nan
+            self._cache[tick] = found
+        return self._cache[tick]
+
+    def justified(self, tick: int, pair: tuple[int, int], lookback: int, rise: float) -> bool:
+        """Whether the exact distance of ``pair`` rose by ``rise`` or more within ticks [tick - lookback, tick]
+        (ticks where one of its nodes is covered do not count)."""
+        a, b = pair
+        series = [self.at(t)[a, b] for t in range(max(0, tick - lookback), tick + 1)]
+        lowest = math.inf
+        for value in series:
+            if math.isnan(value):
+                continue
+            if value - lowest >= rise:
+                return True
+            lowest = min(lowest, value)
+        return False
+
+
+def waits_with_a_move(scenario: tdp.Scenario, record: dict, config: tdp.NavigatorConfig) -> int:
+    """Ticks the robot waited (not at the target) although the exact field of that tick's map offered a move."""
+    count = 0
+    for tick, (mode, cell) in enumerate(zip(record["modes"], record["trajectory"][:-1]), start=1):
+        occupied, target = scenario.occupancy(tick), scenario.target(tick)
+        if mode != "wait" or occupied[cell] or occupied[target]:
+            continue
+        field = tdp.DistanceField(tdp.GridMap(occupied), target, config.neighbourhood, config.corner_cutting)
+        field.converge()
+        count += field.successor(cell) is not None
+    return count
+
+
+def run_world(family: str, size: int, seed: int, dstar: bool, options: dict | None = None) -> list[dict]:
+    """Every planner on one world: one row each. ``options`` are NavigatorConfig fields for accelerating nodes."""
+    scenario = make_world(family, size, seed)
+    base = {"family": family, "size": size, "seed": seed}
+    oracle = oracle_run(scenario, tdp.NavigatorConfig(), scenario.max_ticks)
+    rows = [{**base, "planner": "oracle", "k": None, **_metrics(oracle, oracle["length"])}]
+    if dstar:
+        planner = DStarLite(scenario.occupancy(0), scenario.start, scenario.goal)
+        record = run_planner(scenario, planner, tdp.NavigatorConfig(), scenario.max_ticks)
+        rows.append({**base, "planner": "D* Lite", "k": None, **_metrics(record, oracle["length"])})
+    for k in KS:
+        for accelerating in (True, False):
+            config = tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=k,
+                                         **(options or {} if accelerating else {}))
+            navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
+            navigator.setup()
+            record = run_planner(scenario, navigator, config, scenario.max_ticks)
+            row = {**base, "planner": "accelerating" if accelerating else "plain DP", "k": k,
+                   **_metrics(record, oracle["length"]),
+                   "stuck_waits": waits_with_a_move(scenario, record, config)}
+            if accelerating:
+                row.update(_detections(scenario, record, navigator, config))
+            rows.append(row)
+    return rows
+
+
+def _metrics(record: dict, oracle_length: float) -> dict:
+    per_tick = [sum(r.timings.values()) * 1e3 for r in record["results"]] or [0.0]
+    return {"reached": bool(record["reached"]), "ticks": record["ticks"], "length": record["length"],
+            "ratio": record["length"] / oracle_length if record["reached"] and oracle_length > 0 else math.nan,
+            "collisions": record["collisions"], "hits": record["hits"],
+            "waits": sum(mode == "wait" for mode in record["modes"]), "ms_median": float(np.median(per_tick))}
+
+
+def _detections(scenario: tdp.Scenario, record: dict, navigator: tdp.Navigator, config) -> dict:
+    found = [(tick, d.pair) for tick, result in enumerate(record["results"], start=1) for d in result.detections]
+    if not found:
+        return {"detections": 0, "justified": 0}
+    truth = PairTruth(scenario, navigator.nodes, navigator.vision + config.rise + 1)
+    lookback = math.ceil((config.detect_window + navigator.vision) / config.updates_per_move) + 1
+    justified = sum(truth.justified(tick, pair, lookback, config.rise) for tick, pair in found)
+    return {"detections": len(found), "justified": justified}
+
+
+def summarise(rows: list[dict]) -> list[dict]:
+    """Per family, K and planner (D* Lite and the oracle repeated under each K)."""
+    out = []
+    for family in dict.fromkeys(r["family"] for r in rows):
+        mine = [r for r in rows if r["family"] == family]
+        worlds = sorted({(r["size"], r["seed"]) for r in mine})
+        for k in KS:
+            def row_of(planner, world):
+                return next(r for r in mine if r["planner"] == planner and (r["size"], r["seed"]) == world
+                            and r["k"] in (k, None))
+            planners = [p for p in ("accelerating", "plain DP", "D* Lite", "oracle") if any(
+                r["planner"] == p for r in mine)]
+            everyone = [w for w in worlds if all(row_of(p, w)["reached"] for p in planners)]
+            for planner in planners:
+                runs = [row_of(planner, w) for w in worlds]
+                ratios = [row_of(planner, w)["ratio"] for w in everyone]
+                summary = {"family": family, "k": k, "planner": planner, "worlds": len(worlds),
+                           "reached_pct": 100.0 * sum(r["reached"] for r in runs) / len(runs),
+                           "collisions": sum(r["collisions"] for r in runs), "hits": sum(r["hits"] for r in runs),
+                           "mean_ratio": float(np.mean(ratios)) if ratios else math.nan,
+                           "max_ratio": float(np.max(ratios)) if ratios else math.nan,
+                           "waits": sum(r["waits"] for r in runs),
+                           "stuck_waits": sum(r.get("stuck_waits", 0) for r in runs),
+                           "ms_median": float(np.median([r["ms_median"] for r in runs]))}
+                if planner == "accelerating":
+                    plain = [row_of("plain DP", w) for w in worlds]
+                    summary["worse_than_dp"] = sum(
+                        (not a["reached"] and p["reached"]) or a["ratio"] > p["ratio"] + 0.01
+                        for a, p in zip(runs, plain))
+                    summary["detections"] = sum(r["detections"] for r in runs)
+                    summary["justified"] = sum(r["justified"] for r in runs)
+                out.append(summary)
+    return out
+
+
+def figure(summary: list[dict], path) -> None:
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
+    families = list(dict.fromkeys(s["family"] for s in summary))
+    fig, axes = plt.subplots(1, len(KS), figsize=(6 * len(KS), 4), squeeze=False)
+    for ax, k in zip(axes[0], KS):
+        planners = list(dict.fromkeys(s["planner"] for s in summary))
+        width = 0.8 / len(planners)
+        for j, planner in enumerate(planners):
+            values = [next(s["mean_ratio"] for s in summary if s["family"] == f and s["k"] == k
+                           and s["planner"] == planner) for f in families]
+            ax.bar(np.arange(len(families)) + j * width, values, width, label=planner)
+        ax.set_xticks(np.arange(len(families)) + 0.4 - width / 2)
+        ax.set_xticklabels(families, rotation=20, fontsize=8)
+        ax.set_ylim(0.95, None)
+        ax.set_ylabel("mean path length / oracle")
+        ax.set_title(f"K = {k}")
+        ax.legend(fontsize=7)
+    save_figure(fig, path)
+
+
+def main() -> None:
+    parser = quick_parser(__doc__)
+    parser.add_argument("--seeds", type=int, default=10, help="worlds per family and size (default 10)")
+    parser.add_argument("--first-seed", type=int, default=0, help="the first seed (default 0)")
+    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 200])
+    parser.add_argument("--families", nargs="+", default=list(FAMILIES), choices=FAMILIES)
+    parser.add_argument("--no-dstar", action="store_true", help="leave D* Lite out (plain Python: the slowest)")
+    args = parser.parse_args()
+    seeds = range(args.first_seed, args.first_seed + (1 if args.quick else args.seeds))
+    sizes = [100] if args.quick else args.sizes
+    rows, began = [], time.perf_counter()
+    total = len(args.families) * len(sizes) * len(seeds)
+    for family in args.families:
+        for size in sizes:
+            for seed in seeds:
+                rows += run_world(family, size, seed, dstar=not args.no_dstar)
+                done = len({(r["family"], r["size"], r["seed"]) for r in rows})
+                acc = [r for r in rows[-5:] if r["planner"] == "accelerating"]
+                print(f"  [{done}/{total}, {time.perf_counter() - began:.0f} s] {family}-{size}-{seed}: "
+                      + ", ".join(f"K={r['k']} reached {r['reached']} ratio {r['ratio']:.3f}" for r in acc),
+                      flush=True)
+    summary = summarise(rows)
+    print_table(["family", "K", "planner", "worlds", "reached %", "coll.", "hits", "mean ratio", "max ratio",
+                 "worse than DP", "detections", "justified", "waits (with a move)", "ms/tick"],
+                [[s["family"], str(s["k"]), s["planner"], str(s["worlds"]), f"{s['reached_pct']:.0f}",
+                  str(s["collisions"]), str(s["hits"]), f"{s['mean_ratio']:.3f}", f"{s['max_ratio']:.3f}",
+                  str(s.get("worse_than_dp", "-")), str(s.get("detections", "-")),
+                  f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-",
+                  f"{s['waits']} ({s['stuck_waits']})", f"{s['ms_median']:.2f}"] for s in summary])
+    name = "worlds-quick" if args.quick else "worlds"
+    path = write_json(name, {"machine": machine(), "cutting_families": list(CUTTING), "summary": summary,
+                             "rows": rows})
+    figure(summary, path.with_suffix(".png"))
+    print(f"wrote {path} and {path.with_suffix('.png')}")
+
+
+if __name__ == "__main__":
+    main()

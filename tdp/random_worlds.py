@@ -1,0 +1,288 @@
+"""Seeded random dynamic worlds in six families, for benchmarks and quick worlds on any size.
+
+Each family stresses one thing the planner must get right (sizes in cells scale with the map's side ``size``):
+
+* ``cluttered``: static clutter and 3-6 boxes sliding back and forth a cell clear of the clutter, over open
+  ground: no route is ever cut, so a blockage detection there is suspect unless a box really closed a gap.
+* ``rooms``: a 3 x 3 grid of rooms with a door in every wall; a box closes a door on the robot's route (drawn
+  among those more than a fifth of the side from the start) while it drives, and in half the worlds a second box closes a door on
+  the detour a little later.
+* ``corridor``: a long corridor between two halls and a longer side route; a box drives out of an alcove into the
+  corridor ahead of the robot and parks there for good.
+* ``clearing``: a wall with a short passage, plugged, and a long one; the plug vanishes mid-journey.
+* ``moving-target``: the target walks a free street among clutter and sliding boxes.
+* ``crossing``: one or two boxes keep crossing the robot's route near its middle, back and forth.
+
+``make_world(family, size, seed)`` is deterministic: the same arguments give the same :class:`~tdp.world.Scenario`.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .field import DistanceField
+from .grid import GridMap
+from .world import Obstacle, Scenario
+
+FAMILIES = ("cluttered", "rooms", "corridor", "clearing", "moving-target", "crossing")
+#: Families whose worlds contain a change that cuts or opens a route (the others never cut one).
+CUTTING = ("rooms", "corridor", "clearing")
+
+
+def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
+    """A random world of ``family`` on a ``size`` x ``size`` map, from ``seed``; ``max_ticks`` is 6 x size."""
+    if family not in FAMILIES:
+        raise ValueError(f"unknown world family {family!r}; choose one of {', '.join(FAMILIES)}")
+    if isinstance(size, bool) or not isinstance(size, int) or size < 60:
+        raise ValueError(f"size must be an integer of at least 60 cells, got {size!r}")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
+    rng = np.random.default_rng([FAMILIES.index(family), size, seed])
+    for _ in range(100):
+        try:
+            scenario = _BUILDERS[family](size, rng)
+        except (_Redraw, ValueError):  # ValueError: the Scenario found its start or goal covered
+            continue
+        scenario.name = f"{family}-{size}-{seed}"
+        scenario.max_ticks = 6 * size
+        if _route(scenario.occupancy(0), scenario.start, scenario.goal) and _route(
+                scenario.occupancy(scenario.max_ticks), scenario.start, scenario.target(scenario.max_ticks)):
+            return scenario
+    raise RuntimeError(f"no valid {family} world of size {size} from seed {seed} in 100 draws")
+
+
+class _Redraw(Exception):
+    """A draw that does not make a valid world of its family: draw again from the same generator."""
+
+
+# ------------------------------------------------------------------------------------------------------- helpers
+def _scaled(size: int, cells: float) -> int:
+    """``cells`` at size 100, scaled to ``size``, at least 1."""
+    return max(1, int(round(cells * size / 100)))
+
+
+def _near(rng, size: int, centre: tuple[float, float], spread: float) -> tuple[int, int]:
+    """A random cell within ``spread`` x size of ``centre`` (fractions of the side), inside the map."""
+    r, c = (int(np.clip((v + rng.uniform(-spread, spread)) * size, 1, size - 2)) for v in centre)
+    return r, c
+
+
+def _clear(occupied: np.ndarray, cell: tuple[int, int], radius: int) -> None:
+    r, c = cell
+    occupied[max(0, r - radius):r + radius + 1, max(0, c - radius):c + radius + 1] = False
+
+
+def _clutter(rng, size: int, count: int, keep_free: list[tuple[int, int]]) -> np.ndarray:
+    """``count`` random static rectangles of side 4-10 cells (scaled), none within 4 cells of ``keep_free``."""
+    occupied = np.zeros((size, size), bool)
+    for _ in range(count):
+        h, w = (int(rng.integers(_scaled(size, 4), _scaled(size, 10) + 1)) for _ in range(2))
+        r, c = int(rng.integers(0, size - h)), int(rng.integers(0, size - w))
+        occupied[r:r + h, c:c + w] = True
+    for cell in keep_free:
+        _clear(occupied, cell, _scaled(size, 4))
+    return occupied
+
+
+def _band(shape: tuple[int, int], box: tuple[int, int, int, int], corners: list[tuple[int, int]],
+          margin: int) -> np.ndarray:
+    """bool mask of the cells a box sweeps between its corners (straight segments), grown by ``margin``."""
+    h, w = box[2] - box[0], box[3] - box[1]
+    mask = np.zeros(shape, bool)
+    for (r0, c0), (r1, c1) in zip(corners, corners[1:]):
+        steps = max(abs(r1 - r0), abs(c1 - c0), 1)
+        for t in np.linspace(0.0, 1.0, steps + 1):
+            r, c = int(round(r0 + t * (r1 - r0))), int(round(c0 + t * (c1 - c0)))
+            mask[max(0, r - margin):max(0, r + h + margin), max(0, c - margin):max(0, c + w + margin)] = True
+    return mask
+
+
+def _shuttle(a: tuple[int, int], b: tuple[int, int], size: int, speed: float) -> list[tuple[int, int]]:
+    """Waypoints going b, a, b, a, ... often enough to last 6 x size ticks at ``speed``."""
+    length = max(1.0, math.dist(a, b))
+    return [b, a] * (int(6 * size * speed / (2 * length)) + 2)
+
+
+def _sliding_boxes(rng, size: int, count: int, blocked: np.ndarray, speeds=(0.3, 0.8)) -> list[Obstacle]:
+    """Up to ``count`` boxes of side 3-8 (scaled) shuttling straight across the middle of the map, each sweep
+    clear of ``blocked`` by a cell (boxes may cross each other's sweeps, and pass over lattice nodes)."""
+    boxes = []
+    for _ in range(40 * count):
+        if len(boxes) == count:
+            break
+        side = int(rng.integers(_scaled(size, 3), _scaled(size, 8) + 1))
+        r, c = (int(rng.integers(int(0.1 * size), int(0.9 * size) - side)) for _ in range(2))
+        length = int(rng.integers(int(0.2 * size), int(0.5 * size)))
+        if rng.random() < 0.5:
+            end = (r, int(np.clip(c + length * rng.choice([-1, 1]), 0, size - side)))
+        else:
+            end = (int(np.clip(r + length * rng.choice([-1, 1]), 0, size - side)), c)
+        box = (r, c, r + side, c + side)
+        if (_band(blocked.shape, box, [(r, c), end], 1) & blocked).any():
+            continue
+        speed = float(rng.uniform(*speeds))
+        boxes.append(Obstacle(box=box, waypoints=_shuttle((r, c), end, size, speed), speed=speed))
+    return boxes
+
+
+def _route(occupied: np.ndarray, start: tuple[int, int], goal: tuple[int, int]) -> list[tuple[int, int]]:
+    """The shortest path from start to goal on a static map ([] if there is none)."""
+    field = DistanceField(GridMap(occupied), goal)
+    field.converge()
+    return field.path(start)
+
+
+def _keep_free(size: int, cells: list[tuple[int, int]], radius: int) -> np.ndarray:
+    mask = np.zeros((size, size), bool)
+    for r, c in cells:
+        mask[max(0, r - radius):r + radius + 1, max(0, c - radius):c + radius + 1] = True
+    return mask
+
+
+# ------------------------------------------------------------------------------------------------------ families
+def _cluttered(size: int, rng) -> Scenario:
+    start, goal = _near(rng, size, (0.06, 0.06), 0.04), _near(rng, size, (0.94, 0.94), 0.04)
+    occupied = _clutter(rng, size, int(rng.integers(6, 12)) * (size // 100) ** 2, [start, goal])
+    boxes = _sliding_boxes(rng, size, int(rng.integers(3, 7)), occupied | _keep_free(size, [start, goal], 6))
+    return Scenario(GridMap(occupied), start, goal, obstacles=boxes,
+                    description="clutter and sliding boxes; no route is ever cut")
+
+
+def _rooms(size: int, rng) -> Scenario:
+    rooms, wall = 3, _scaled(size, 2)
+    edges = [int(round(k * size / rooms)) for k in range(rooms + 1)]
+    occupied = np.zeros((size, size), bool)
+    doors = []
+    for k in edges[1:-1]:
+        occupied[k - wall // 2:k - wall // 2 + wall, :] = True
+        occupied[:, k - wall // 2:k - wall // 2 + wall] = True
+    for k in edges[1:-1]:
+        for a, b in zip(edges, edges[1:]):
+            width = int(rng.integers(_scaled(size, 4), _scaled(size, 7) + 1))
+            offset = int(rng.integers(a + wall + 2, b - wall - 2 - width))
+            for door in ((k - wall // 2, offset, k - wall // 2 + wall, offset + width),
+                         (offset, k - wall // 2, offset + width, k - wall // 2 + wall)):
+                occupied[door[0]:door[2], door[1]:door[3]] = False
+                doors.append(door)
+    start = _near(rng, size, (0.15, 0.15), 0.1)
+    goal = _near(rng, size, (0.85, 0.85), 0.1)
+    for cell in (start, goal):
+        _clear(occupied, cell, 1)
+    route = _route(occupied, start, goal)
+    obstacles, closed = [], occupied.copy()
+    first = _door_on(route, doors, start, 0.2 * size, rng)
+    if first is None:
+        raise _Redraw
+    tick = int(rng.integers(5, int(0.15 * size)))
+    obstacles.append(Obstacle(box=first, appear_at=tick))
+    closed[first[0]:first[2], first[1]:first[3]] = True
+    if rng.random() < 0.5:
+        detour = _route(closed, start, goal)
+        second = _door_on(detour, [d for d in doors if d != first], start, 0.2 * size, rng)
+        if second is not None:
+            closed[second[0]:second[2], second[1]:second[3]] = True
+            if _route(closed, start, goal):
+                obstacles.append(Obstacle(box=second, appear_at=tick + int(rng.integers(5, int(0.25 * size)))))
+    return Scenario(GridMap(occupied), start, goal, obstacles=obstacles, change_tick=tick, blocking=0,
+                    description="rooms whose doors close on the robot's route (sometimes a second on the detour)")
+
+
+def _door_on(route, doors, start, beyond: float, rng):
+    """A random door among those the route passes through more than ``beyond`` cells (straight line) from the
+    start (None if there is none)."""
+    passed = []
+    for r, c in route:
+        if math.dist((r, c), start) > beyond:
+            passed += [d for d in doors if d[0] <= r < d[2] and d[1] <= c < d[3] and d not in passed]
+    return passed[int(rng.integers(len(passed)))] if passed else None
+
+
+def _corridor(size: int, rng) -> Scenario:
+    hall = int(0.2 * size)
+    width = int(rng.integers(_scaled(size, 5), _scaled(size, 8) + 1))
+    occupied = np.ones((size, size), bool)
+    occupied[:, :hall] = occupied[:, size - hall:] = False
+    main = int(rng.integers(int(0.4 * size), int(0.6 * size) - width))
+    occupied[main:main + width, :] = False
+    side_on_top = bool(rng.random() < 0.5)
+    side = int(rng.integers(int(0.06 * size), int(0.15 * size)))
+    side = side if side_on_top else size - side - width
+    occupied[side:side + width, :] = False
+    park = int(rng.integers(hall + int(0.3 * (size - 2 * hall)), hall + int(0.7 * (size - 2 * hall)) - width))
+    alcove = main + width + 1 if side_on_top else main - width - 1
+    occupied[min(alcove, main + width):max(alcove + width, main), park:park + width] = False
+    start = (int(np.clip(main + width // 2 + rng.integers(-int(0.15 * size), int(0.15 * size)), 1, size - 2)),
+             int(rng.integers(2, hall - 2)))
+    goal = (int(np.clip(main + width // 2 + rng.integers(-int(0.15 * size), int(0.15 * size)), 1, size - 2)),
+            int(rng.integers(size - hall + 2, size - 2)))
+    arrive = math.dist(start, (main, park))  # ticks for the robot to reach the parking place, about
+    parking = 2 * (width + 1)  # ticks the box needs at 0.5 cells per tick
+    latest = max(6, int(arrive) - parking - 10)
+    appear = int(rng.integers(min(5, latest - 1), latest))
+    box = Obstacle(box=(alcove, park, alcove + width, park + width), waypoints=[(main, park)], speed=0.5,
+                   appear_at=appear)
+    return Scenario(GridMap(occupied), start, goal, obstacles=[box], change_tick=appear + parking, blocking=0,
+                    description="a box drives out of an alcove and parks in the corridor; a longer side route")
+
+
+def _clearing(size: int, rng) -> Scenario:
+    start, goal = _near(rng, size, (0.08, 0.3), 0.06), _near(rng, size, (0.92, 0.7), 0.06)
+    occupied = _clutter(rng, size, int(rng.integers(3, 7)) * (size // 100) ** 2, [start, goal])
+    row, thick = int(rng.integers(int(0.35 * size), int(0.65 * size))), _scaled(size, 3)
+    occupied[row:row + thick, :] = True
+    short = int(rng.integers(int(0.35 * size), int(0.65 * size)))
+    width = int(rng.integers(_scaled(size, 5), _scaled(size, 9) + 1))
+    long_col = int(rng.integers(2, int(0.1 * size))) if rng.random() < 0.5 else size - 2 - width - int(
+        rng.integers(0, int(0.1 * size)))
+    for col in (short, long_col):
+        occupied[row - _scaled(size, 3):row + thick + _scaled(size, 3), col:col + width] = False
+    plug = Obstacle(box=(row, short, row + thick, short + width), vanish_at=int(rng.integers(int(0.1 * size),
+                                                                                          int(0.4 * size))))
+    return Scenario(GridMap(occupied), start, goal, obstacles=[plug], change_tick=plug.vanish_at, blocking=0,
+                    description="a plugged short passage opens mid-journey; a long one is always open")
+
+
+def _moving_target(size: int, rng) -> Scenario:
+    start = _near(rng, size, (0.08, 0.08), 0.05)
+    points = [_near(rng, size, (0.6, 0.6), 0.3) for _ in range(int(rng.integers(2, 5)))]
+    street = _band((size, size), (0, 0, 1, 1), points, _scaled(size, 2))
+    occupied = _clutter(rng, size, int(rng.integers(5, 10)) * (size // 100) ** 2, [start]) & ~street
+    boxes = _sliding_boxes(rng, size, int(rng.integers(2, 4)),
+                           occupied | _band((size, size), (0, 0, 1, 1), points, _scaled(size, 4))
+                           | _keep_free(size, [start], 6))
+    return Scenario(GridMap(occupied), start, points[0], obstacles=boxes, target_waypoints=points[1:],
+                    target_speed=float(rng.uniform(0.25, 0.45)),
+                    description="the target walks a free street among clutter and sliding boxes")
+
+
+def _crossing(size: int, rng) -> Scenario:
+    start, goal = _near(rng, size, (0.08, 0.08), 0.05), _near(rng, size, (0.92, 0.92), 0.05)
+    occupied = _clutter(rng, size, int(rng.integers(3, 7)) * (size // 100) ** 2, [start, goal])
+    route = _route(occupied, start, goal)
+    if not route:
+        raise _Redraw
+    boxes = []
+    for fraction in sorted(rng.uniform(0.3, 0.7, int(rng.integers(1, 3)))):
+        k = int(fraction * (len(route) - 1))
+        (r0, c0), (r1, c1) = route[max(0, k - 3)], route[min(len(route) - 1, k + 3)]
+        normal = np.array([c1 - c0, -(r1 - r0)], float)
+        normal /= max(1e-9, np.linalg.norm(normal))
+        side = int(rng.integers(_scaled(size, 3), _scaled(size, 5) + 1))
+        reach = float(rng.uniform(0.08, 0.14)) * size
+        centre = np.array(route[k], float) - side / 2
+        a = tuple(int(v) for v in np.clip(np.round(centre - reach * normal), 0, size - side))
+        b = tuple(int(v) for v in np.clip(np.round(centre + reach * normal), 0, size - side))
+        speed = float(rng.uniform(0.5, 0.8))
+        box = (a[0], a[1], a[0] + side, a[1] + side)
+        if (_band((size, size), box, [a, b], 1) & (_keep_free(size, [start, goal], 4) | occupied)).any():
+            continue
+        boxes.append(Obstacle(box=box, waypoints=_shuttle(a, b, size, speed), speed=speed))
+    if not boxes:
+        raise _Redraw
+    return Scenario(GridMap(occupied), start, goal, obstacles=boxes,
+                    description="boxes keep crossing the robot's route near its middle")
+
+
+_BUILDERS = {"cluttered": _cluttered, "rooms": _rooms, "corridor": _corridor, "clearing": _clearing,
+             "moving-target": _moving_target, "crossing": _crossing}
