@@ -87,7 +87,7 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--updates", type=int, default=4, help="K, DP iterations per robot move (default 4)")
     r.add_argument("--nodes", type=int, default=25, help="number of accelerating nodes (default 25)")
     r.add_argument("--vision", type=float, default=2.5, help="DmaxQ / node spacing (default 2.5)")
-    r.add_argument("--detect-window", type=int, default=8, help="J (default 8)")
+    r.add_argument("--detect-window", type=int, default=6, help="J (default 6)")
     r.add_argument("--detect-rise", type=float, default=None, help="U (default J - 1)")
     r.add_argument("--neighbourhood", type=int, default=16, choices=(4, 8, 16))
     r.add_argument("--corner-cutting", action="store_true")

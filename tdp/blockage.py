@@ -9,10 +9,15 @@ import numpy as np
 class BlockageMonitor:
     """Watches the node-pair distances D(a, b, i) iteration by iteration.
 
-    A pair (a, b) that was connected (D < DmaxQ) ``window`` (J) iterations ago is blocked at iteration i when
-    ``D(a, b, i) - D(a, b, i - J) >= rise`` (U) or ``D(a, b, i) >= DmaxQ``. A pair is reported once, on the first
-    iteration its condition holds, and again only after the condition has cleared. Pairs with a node covered by an
-    obstacle are not watched (the node is inactive, DESIGN 5.1).
+    A pair (a, b) connected J iterations ago (D < DmaxQ, ``vision``) is blocked at iteration i when
+    ``D(a, b, i) - D(a, b, i - J) >= rise`` (U, over ``window`` J iterations) while both its nodes were active
+    (finite readings) at every one of those iterations. The node layers read up to DmaxQ + U (their cap; edges of
+    the graph still need D < DmaxQ), so a pair that loses its connection always shows a rise of at least U, while a
+    pair that is only just connected and crosses DmaxQ because a box passes by shows only the rise the box really
+    caused: there is no separate "reached DmaxQ" test to flicker. A pair is reported once, on the first iteration
+    its condition holds, and again only after the condition has cleared. An inactive node (covered by an obstacle,
+    or still settling after being uncovered) reads inf: its pairs' histories restart J iterations after it is active
+    again, so covering and uncovering alone never look like a blockage.
     """
 
     def __init__(self, vision: float, window: int = 8, rise: float = 7.0):
@@ -37,9 +42,9 @@ class BlockageMonitor:
         if len(self._history) <= self.window:
             return []
         before = self._history[0]
-        watched = (before < self.vision) & np.isfinite(pairs)
-        rise = np.where(watched, pairs, 0.0) - np.where(watched, before, 0.0)
-        blocked = watched & ((rise >= self.rise) | (pairs >= self.vision))
+        watched = np.isfinite(np.stack(self._history)).all(axis=0) & (before < self.vision)
+        rise = np.subtract(pairs, before, out=np.zeros_like(pairs), where=watched)
+        blocked = watched & (rise >= self.rise)
         fresh = blocked & ~self._blocked
         self._blocked = blocked | blocked.T
         a, b = np.nonzero(np.triu(fresh, k=1))

@@ -12,15 +12,18 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from . import checks
 from .blockage import BlockageMonitor, crossing_blocked, segment_near_path
 from .engine import Engine
 from .field import cells_from, check_cap
 from .grid import GridMap
-from .nodes import NodeGraph, place_nodes
+from .nodes import PLACEMENTS, NodeGraph, place_nodes
 from .search import uniform_cost_search
 from .stencil import check_neighbourhood
 
-PLACEMENTS = ("drop", "nudge")
+#: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
+#: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
+SWITCH_BACK = ("evidence", "paper")
 
 
 def _check_int(value, name: str, low: int) -> int:
@@ -46,20 +49,26 @@ class NavigatorConfig:
     vision: DmaxQ / s (DESIGN 5.2). updates_per_move: K, DP iterations per robot move.
     detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
     d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (DESIGN 4).
-    placement: "drop" a lattice node on an obstacle (paper) or "nudge" it to a free cell within s/4.
+    placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
+    nearest the centre), "drop" (left out, the paper) or "nudge" (a free cell within s/4); see
+    :func:`tdp.nodes.place_nodes`.
+    switch_back: "evidence" (leave a backup as soon as the goal layer's successors reach G by a route no longer
+    than the backup's estimate, and never start one that the goal layer already beats) or "paper" (only after
+    ||Path|| DP iterations, section 4.3).
     """
 
     accelerating: bool = True
     nodes: int = 25
     vision: float = 2.5
     updates_per_move: int = 4
-    detect_window: int = 8
+    detect_window: int = 6
     detect_rise: float | None = None
     d_max: float = math.inf
     neighbourhood: int = 16
     corner_cutting: bool = False
     spacing: float | None = None
-    placement: str = "drop"
+    placement: str = "free"
+    switch_back: str = "evidence"
 
     def __post_init__(self):
         if not isinstance(self.accelerating, bool):
@@ -78,6 +87,8 @@ class NavigatorConfig:
             raise ValueError(f"corner_cutting must be True or False, got {self.corner_cutting!r}")
         if self.placement not in PLACEMENTS:
             raise ValueError(f"placement must be one of {PLACEMENTS}, got {self.placement!r}")
+        if self.switch_back not in SWITCH_BACK:
+            raise ValueError(f"switch_back must be one of {SWITCH_BACK}, got {self.switch_back!r}")
 
     @property
     def rise(self) -> float:
@@ -123,26 +134,34 @@ class Navigator:
                  config: NavigatorConfig = NavigatorConfig()):
         if not isinstance(config, NavigatorConfig):
             raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
+        if not isinstance(grid, GridMap):
+            raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
         self.grid = grid
         self.config = config
         self.robot = grid.check_free_cell(start, "start")
         goal = grid.check_free_cell(goal, "goal")
         if config.accelerating:
             count = None if config.spacing is not None else config.nodes
-            lattice = place_nodes(grid.occupied, count=count, spacing=config.spacing,
-                                  nudge=config.placement == "nudge")
+            lattice = place_nodes(grid.occupied, count=count, spacing=config.spacing, rule=config.placement)
             self.nodes, self.spacing = lattice.cells, lattice.spacing
         else:
             self.nodes, self.spacing = np.zeros((0, 2), np.int32), 0.0
         self.vision = config.vision * self.spacing
         self.engine = Engine(grid.occupied, goal, goal_cap=config.d_max, nodes=self.nodes,
-                             node_cap=self.vision, neighbourhood=config.neighbourhood,
+                             node_cap=self.vision + config.rise, neighbourhood=config.neighbourhood,
                              corner_cutting=config.corner_cutting)
         self.monitor = BlockageMonitor(self.vision, config.detect_window, config.rise)
-        self.state = "dp"  # what the robot follows: "dp" (S(., G)), "backup" (S(., subgoal)) or "no-route"
+        # What the robot follows: "dp" (S(., G)), "backup" (S(., subgoal)), or "no-route": S(., G) while the last
+        # search found no route in the node graph, searching again every tick.
+        self.state = "dp"
         self._path_cost = 0.0
         self._since_detection = 0
         self._subgoal: int | None = None
+        self._cost_to_goal: dict[int, float] = {}  # along the last backup path: cost from each vertex to G
+        # Iteration from which each node is active: inf while covered, and after it is uncovered, long enough for
+        # its layer to settle (phantom values rise at least a cell per iteration, true ones arrive within DmaxQ).
+        self._active_from = np.zeros(len(self.nodes))
+        self._settling = math.ceil(self.vision + config.rise) + 1
         self._readings: np.ndarray | None = None  # every layer at the graph cells, as of the last iteration
 
     # -- inputs ------------------------------------------------------------------------------------------------
@@ -162,25 +181,31 @@ class Navigator:
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         self.engine.set_cells(cells, occupied)
         self._readings = None
+        covered = self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+        uncovered = ~covered & np.isinf(self._active_from)
+        self._active_from[covered] = np.inf
+        self._active_from[uncovered] = self.engine.iterations + self._settling
 
     def set_goal(self, goal: tuple[int, int]) -> None:
-        """Move the target (moving-target scenarios)."""
-        if not self.grid.contains(goal):
-            raise ValueError(f"goal {goal} is outside the {self.grid.shape[0]} x {self.grid.shape[1]} map")
-        self.engine.set_goal(goal)
+        """Move the target (moving-target scenarios). The goal may be on an obstacle (a moving target may cross
+        one): while it is, the goal layer has no source, its values rise, and the robot keeps to the last route
+        the layer knew until the target is on free ground again."""
+        self.engine.set_goal(checks.cell(goal, self.grid.shape, "goal"))
         self._readings = None
 
     def move_robot(self, cell: tuple[int, int]) -> None:
-        """Tell the navigator where the robot is now."""
-        self.robot = (int(cell[0]), int(cell[1]))
+        """Tell the navigator where the robot is now (a cell inside the map; it may be on an obstacle that drove
+        onto it)."""
+        self.robot = checks.cell(cell, self.grid.shape, "robot cell")
         self._readings = None
 
     # -- the tick ----------------------------------------------------------------------------------------------
     def tick(self) -> TickResult:
         """K DP iterations with the monitor after each, then the mode logic; returns where to move.
 
-        The mode is "dp" or "backup" while the robot moves, "wait" while it has nowhere to go (the goal layer has
-        no successor, or the backup search found no route: it is retried every tick).
+        The mode is "dp" or "backup" while the robot moves, "wait" while it has nowhere to go: the robot follows
+        the goal layer when the node graph has no route (the search is retried every tick) and waits only when
+        neither offers a move (DESIGN 5.5, revision 2).
         """
         new_pairs, dp_s, monitor_s = self._iterate()
         began = time.perf_counter()
@@ -192,6 +217,9 @@ class Navigator:
         result.next_cell = self._next_cell()
         if result.next_cell is None and self.state == "backup":
             self._search(result, keep_count=True)  # the subgoal's layer does not reach R: look again
+            result.next_cell = self._next_cell()
+        if result.next_cell is None and self.state == "backup":
+            self.state, self._subgoal = "no-route", None  # no node layer offers a move: the goal layer's
             result.next_cell = self._next_cell()
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
@@ -214,11 +242,10 @@ class Navigator:
         self._readings = samples[-1]
         dp_s = time.perf_counter() - began
         began = time.perf_counter()
-        active = self._active_nodes()
         new_pairs = []
         for step, sample in enumerate(samples):
             iteration = self.engine.iterations - k + step + 1
-            pairs = NodeGraph(sample, self.vision, active).pairs
+            pairs = NodeGraph(sample, self.vision, self._active_nodes(iteration)).pairs
             new_pairs += [(iteration, pair) for pair in self.monitor.observe(pairs)]
         return new_pairs, dp_s, time.perf_counter() - began
 
@@ -226,9 +253,10 @@ class Navigator:
         """The cells the node graph reads every layer at: the nodes, then R, then G."""
         return np.vstack([self.nodes, [self.robot], [self.goal]])
 
-    def _active_nodes(self) -> np.ndarray:
-        """Nodes not covered by an obstacle (DESIGN 5.1)."""
-        return ~self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+    def _active_nodes(self, iteration: int | None = None) -> np.ndarray:
+        """Nodes active at DP iteration ``iteration`` (default: the last): not covered by an obstacle, and settled
+        since they were last uncovered (DESIGN 5.1, revision 2)."""
+        return self._active_from <= (self.engine.iterations if iteration is None else iteration)
 
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
         """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
@@ -261,7 +289,9 @@ class Navigator:
                 for iteration, pair in new_pairs]
 
     def _update_state(self, result: TickResult) -> None:
-        """Start a backup on a relevant blockage, re-search near the subgoal, switch back after ||Path||."""
+        """Start a backup on a relevant blockage, re-search near the subgoal, switch back after ||Path|| or, with
+        ``switch_back="evidence"``, as soon as the goal layer is trusted again."""
+        following_backup = self.state == "backup"
         if any(d.relevant for d in result.detections):
             self._since_detection = 0
             self._search(result, keep_count=False)
@@ -273,9 +303,32 @@ class Navigator:
                 self._search(result, keep_count=True)
         elif self.state == "no-route":
             self._search(result, keep_count=False)
+        if self.state != "dp" and self.config.switch_back == "evidence" and self._goal_layer_beats_backup():
+            result.switched_back = following_backup
+            self.state, self._subgoal = "dp", None
+
+    def _goal_layer_beats_backup(self) -> bool:
+        """Whether the goal layer's successors lead from R to G by a route no longer than what the backup is
+        estimated to cost from R. The successors only ever make legal moves on the current map, so a chain that
+        reaches G is a real route of that length; while the news of a cut is still travelling, the chain runs into
+        the cut and does not reach G."""
+        budget = self._backup_cost_from_robot()
+        limit = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
+        chain = [self.robot] + self.engine.trace(0, self.robot, limit)
+        if chain[-1] != self.goal:
+            return False
+        return sum(math.dist(a, b) for a, b in zip(chain, chain[1:])) <= budget
+
+    def _backup_cost_from_robot(self) -> float:
+        """The backup's estimated cost from R: the subgoal's layer at R plus the rest of the last path (inf when the
+        last search found no route)."""
+        if self.state != "backup":
+            return math.inf
+        return self._layer_at_robot(self._subgoal) + self._cost_to_goal[self._subgoal]
 
     def _search(self, result: TickResult, keep_count: bool) -> None:
-        """Uniform-cost search R -> G; on success follow the subgoal (DESIGN 5.5), else wait and retry."""
+        """Uniform-cost search R -> G; on success follow the subgoal (DESIGN 5.5), else follow the goal layer and
+        search again next tick."""
         graph = self._graph(without_blocked=True)
         found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)
         if found is None:
@@ -287,6 +340,11 @@ class Navigator:
         result.backup_path, result.backup_cost = path, cost
         self.state = "backup"
         self._subgoal = self._choose_subgoal(path, graph)
+        remaining = 0.0
+        self._cost_to_goal = {path[-1]: 0.0}
+        for a, b in zip(path[-2::-1], path[:0:-1]):
+            remaining += graph.weight(a, b)
+            self._cost_to_goal[a] = remaining
 
     def _choose_subgoal(self, path: list[int], graph: NodeGraph) -> int:
         """Q2 (the second point after R), Q1 if R is outside Q2's vision, the last point if the path is shorter
@@ -309,8 +367,8 @@ class Navigator:
 
     def route(self, steps: int) -> list[tuple[int, int]]:
         """Up to ``steps`` cells the robot would follow from R now: successors of the goal layer, or in backup mode
-        of the subgoal's layer (for a controller's look-ahead). Empty at the goal or while there is no route."""
-        if self.robot == self.goal or self.state == "no-route":
+        of the subgoal's layer (for a controller's look-ahead). Empty at the goal or where the layer gives no move."""
+        if self.robot == self.goal:
             return []
         layer = 0
         if self.state == "backup" and self._subgoal < len(self.nodes):

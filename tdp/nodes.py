@@ -21,43 +21,67 @@ def spacing_for(shape: tuple[int, int], count: int) -> float:
     return math.sqrt(shape[0] * shape[1] / count)
 
 
-def place_nodes(occupied: np.ndarray, *, count: int | None = None, spacing: float | None = None,
-                nudge: bool = False) -> Lattice:
-    """Uniform lattice of nodes at ((k + 1/2) s) in rows and columns (DESIGN 5.1).
+#: Placement rules: "free" (the free cell nearest each lattice cell's centre, inside that cell), "drop" (the paper:
+#: a centre on an obstacle loses its node) and "nudge" (a centre on an obstacle moves to a free cell within s/4).
+PLACEMENTS = ("free", "drop", "nudge")
 
-    Give ``count`` (s follows from the map's area) or ``spacing`` s in cells. A node on an obstacle is dropped, as
-    in the paper, or with ``nudge`` moved to the nearest free cell within s/4 (dropped if there is none).
+
+def place_nodes(occupied: np.ndarray, *, count: int | None = None, spacing: float | None = None,
+                rule: str = "free") -> Lattice:
+    """Nodes of a uniform lattice of spacing s: one per s x s lattice cell, centred at ((k + 1/2) s) in rows and
+    columns (DESIGN 5.1).
+
+    Give ``count`` (s follows from the map's area) or ``spacing`` s in cells. ``rule`` says what happens where the
+    centre is on an obstacle: "free" takes the free cell of the lattice cell nearest its centre (so a corridor or a
+    side route through a lattice cell gets a node; a lattice cell with no free cell gets none), "drop" leaves the
+    node out (the paper), "nudge" takes the nearest free cell within s/4 (dropped if there is none). At most one
+    node per lattice cell in every rule, so the windows' total area stays bounded.
     """
     if (count is None) == (spacing is None):
         raise ValueError("give exactly one of nodes (a count) or spacing")
+    if rule not in PLACEMENTS:
+        raise ValueError(f"placement must be one of {PLACEMENTS}, got {rule!r}")
     if spacing is None:
         spacing = spacing_for(occupied.shape, count)
     if isinstance(spacing, bool) or not isinstance(spacing, (int, float)) or not 1 <= spacing < math.inf:
         raise ValueError(f"spacing must be a number of cells >= 1, got {spacing!r}")
-    rows = [int((k + 0.5) * spacing) for k in range(int(occupied.shape[0] / spacing + 0.5))]
-    cols = [int((k + 0.5) * spacing) for k in range(int(occupied.shape[1] / spacing + 0.5))]
+    rows = range(int(occupied.shape[0] / spacing + 0.5))
+    cols = range(int(occupied.shape[1] / spacing + 0.5))
     cells = []
-    for r in rows:
-        for c in cols:
-            if r >= occupied.shape[0] or c >= occupied.shape[1]:
+    for a in rows:
+        for b in cols:
+            centre = (int((a + 0.5) * spacing), int((b + 0.5) * spacing))
+            if centre[0] >= occupied.shape[0] or centre[1] >= occupied.shape[1]:
                 continue
-            cell = (r, c) if not occupied[r, c] else (_nearest_free(occupied, (r, c), spacing / 4) if nudge else None)
+            if not occupied[centre]:
+                cell = centre
+            elif rule == "free":
+                lattice_cell = (int(a * spacing), int(b * spacing), int((a + 1) * spacing), int((b + 1) * spacing))
+                cell = _nearest_free(occupied, centre, math.inf, lattice_cell)
+            elif rule == "nudge":
+                cell = _nearest_free(occupied, centre, spacing / 4)
+            else:
+                cell = None
             if cell is not None:
                 cells.append(cell)
     return Lattice(np.array(cells, np.int32).reshape(-1, 2), float(spacing))
 
 
-def _nearest_free(occupied: np.ndarray, cell: tuple[int, int], radius: float) -> tuple[int, int] | None:
-    """The free cell nearest to ``cell`` within Euclidean ``radius`` (ties: row-major first), or None."""
-    reach = int(radius)
-    best, best_d = None, math.inf
-    for r in range(cell[0] - reach, cell[0] + reach + 1):
-        for c in range(cell[1] - reach, cell[1] + reach + 1):
-            d = math.hypot(r - cell[0], c - cell[1])
-            inside = 0 <= r < occupied.shape[0] and 0 <= c < occupied.shape[1]
-            if inside and d <= radius and d < best_d and not occupied[r, c]:
-                best, best_d = (r, c), d
-    return best
+def _nearest_free(occupied: np.ndarray, cell: tuple[int, int], radius: float,
+                  within: tuple[int, int, int, int] | None = None) -> tuple[int, int] | None:
+    """The free cell nearest to ``cell`` within Euclidean ``radius`` and inside the rows r0..r1-1 and columns
+    c0..c1-1 of ``within`` = (r0, c0, r1, c1) if given (ties: row-major first), or None."""
+    reach = min(int(radius), max(occupied.shape)) if math.isfinite(radius) else max(occupied.shape)
+    r0, c0, r1, c1 = within or (cell[0] - reach, cell[1] - reach, cell[0] + reach + 1, cell[1] + reach + 1)
+    r0, c0 = max(r0, 0, cell[0] - reach), max(c0, 0, cell[1] - reach)
+    r1, c1 = min(r1, occupied.shape[0], cell[0] + reach + 1), min(c1, occupied.shape[1], cell[1] + reach + 1)
+    rows, cols = np.mgrid[r0:r1, c0:c1]
+    distance = np.hypot(rows - cell[0], cols - cell[1])
+    distance[occupied[r0:r1, c0:c1] | (distance > radius)] = np.inf
+    if not np.isfinite(distance).any():
+        return None
+    k = int(np.argmin(distance))
+    return int(rows.flat[k]), int(cols.flat[k])
 
 
 class NodeGraph:
@@ -108,18 +132,26 @@ class NodeGraph:
     def goal_id(self) -> int:
         return self.n + 1
 
+    def _weights(self, vertex: int) -> np.ndarray:
+        """Weights from ``vertex`` to every vertex (nodes, then R, then G); inf where there is no edge."""
+        if vertex == self.robot_id:
+            return np.append(self.robot, [np.inf, self.robot_goal])
+        if vertex == self.goal_id:
+            return np.append(self.goal, [self.robot_goal, np.inf])
+        weights = np.append(self.pairs[vertex], [self.robot[vertex], self.goal[vertex]])
+        weights[vertex] = np.inf
+        return weights
+
     def neighbours(self, vertex: int):
         """(neighbour, weight) pairs of ``vertex`` over the edges with weight < DmaxQ."""
-        cap = self.vision
-        if vertex == self.robot_id:
-            weights = np.append(self.robot, [np.inf, self.robot_goal])
-        elif vertex == self.goal_id:
-            weights = np.append(self.goal, [self.robot_goal, np.inf])
-        else:
-            weights = np.append(self.pairs[vertex], [self.robot[vertex], self.goal[vertex]])
-            weights[vertex] = np.inf
-        for other in np.flatnonzero(weights < cap):
+        weights = self._weights(vertex)
+        for other in np.flatnonzero(weights < self.vision):
             yield int(other), float(weights[other])
+
+    def weight(self, a: int, b: int) -> float:
+        """The weight of edge a-b (vertex ids), inf if there is none."""
+        value = float(self._weights(a)[b])
+        return value if value < self.vision else np.inf
 
     def edges(self) -> list[tuple[int, int, float]]:
         """Every node-node edge (a < b, weight) of the current graph."""

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 import tdp
 from tdp.blockage import BlockageMonitor, crossing_blocked, segment_near_path
 from tdp.nodes import NodeGraph, place_nodes
+from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 
 DEFAULT = tdp.NavigatorConfig()
@@ -94,9 +95,9 @@ def test_runs_are_deterministic(episodes):
     assert again.detections == first.detections and again.length == first.length
 
 
-def test_switch_back_after_path_cost_iterations():
+def test_switch_back_after_path_cost_iterations_with_the_papers_rule():
     scenario = tdp.scenarios.get("sudden-blockage")
-    config = tdp.NavigatorConfig(updates_per_move=4)
+    config = tdp.NavigatorConfig(updates_per_move=4, switch_back="paper")
     navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
     navigator.setup()
     occupied, robot = scenario.occupancy(0), scenario.start
@@ -142,7 +143,7 @@ def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
     assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 2      # standing on Q1: skip it
 
 
-def test_monitor_flags_a_steady_rise_and_a_lost_connection_but_not_a_small_change():
+def test_monitor_flags_a_rise_of_u_but_not_a_small_change():
     monitor = BlockageMonitor(vision=20.0, window=8, rise=7.0)
     found = []
     for i in range(30):
@@ -150,8 +151,22 @@ def test_monitor_flags_a_steady_rise_and_a_lost_connection_but_not_a_small_chang
         pairs = np.maximum(pairs, pairs.T)
         found += [(i, p) for p in monitor.observe(pairs)]
     assert found == [(17, (0, 1))]  # 17 - 10 = 7 >= U over J = 8 iterations, reported once; 0.5 is ignored
+
+
+def test_monitor_never_flags_a_pair_that_only_flickers_across_dmaxq():
+    """A pair just under DmaxQ pushed over it by a passing box (its reading rises by less than U) is no blockage;
+    one that loses its connection reads up to the layer cap DmaxQ + U and is flagged."""
     monitor = BlockageMonitor(vision=20.0, window=2, rise=7.0)
-    assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (15.0, 15.0, 20.0)] == [[], [], [(0, 1)]]
+    assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (19.0, 19.0, 22.0, 19.0, 22.5, 22.5)] == [[]] * 6
+    monitor = BlockageMonitor(vision=20.0, window=2, rise=7.0)
+    assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (15.0, 15.0, 27.0)] == [[], [], [(0, 1)]]
+
+
+def test_monitor_restarts_a_pairs_history_after_its_node_was_inactive():
+    monitor = BlockageMonitor(vision=20.0, window=2, rise=3.0)
+    readings = [5.0, np.inf, np.inf, 15.0, 15.0, 15.0, 19.0]  # covered, then back with a stale reading
+    found = [monitor.observe(np.array([[0, d], [d, 0]])) for d in readings]
+    assert found == [[]] * 6 + [[(0, 1)]]  # only a rise seen while the pair is watched throughout counts
 
 
 def test_monitor_ignores_inactive_nodes():
@@ -197,20 +212,59 @@ def test_uniform_cost_search_agrees_with_brute_force(n, seed, density):
         assert sum(weights[a, b] for a, b in zip(path, path[1:])) == pytest.approx(cost)
 
 
-def test_lattice_placement_drops_or_nudges_nodes_on_obstacles():
+def test_lattice_placement_rules():
     occupied = np.zeros((40, 40), bool)
     occupied[9:12, 9:12] = True
-    dropped = place_nodes(occupied, spacing=20)
-    assert dropped.cells.tolist() == [[10, 30], [30, 10], [30, 30]]
-    nudged = place_nodes(occupied, spacing=20, nudge=True)
-    assert nudged.cells.tolist() == [[8, 10], [10, 30], [30, 10], [30, 30]]
+    assert place_nodes(occupied, spacing=20, rule="drop").cells.tolist() == [[10, 30], [30, 10], [30, 30]]
+    assert place_nodes(occupied, spacing=20, rule="nudge").cells.tolist() == [[8, 10], [10, 30], [30, 10], [30, 30]]
+    assert place_nodes(occupied, spacing=20).cells.tolist() == [[8, 10], [10, 30], [30, 10], [30, 30]]
     assert len(place_nodes(np.zeros((100, 100), bool), count=25).cells) == 25
+    corridor = np.ones((40, 40), bool)
+    corridor[3:5, :] = False  # a corridor through the top lattice cells, far from their centres
+    assert place_nodes(corridor, spacing=20).cells.tolist() == [[4, 10], [4, 30]]  # "free": nodes on the corridor
+    assert len(place_nodes(corridor, spacing=20, rule="drop").cells) == 0
+    assert len(place_nodes(corridor, spacing=20, rule="nudge").cells) == 0
+    with pytest.raises(ValueError, match="placement"):
+        place_nodes(corridor, spacing=20, rule="random")
+
+
+def test_covering_and_uncovering_nodes_alone_raises_no_detection():
+    """A box that keeps sliding over a node (no route is ever cut): the node leaves the monitor while covered and
+    while its layer settles, so no pair is flagged."""
+    grid = tdp.GridMap(np.zeros((60, 60), bool))
+    box = tdp.Obstacle(box=(27, 14, 33, 20), waypoints=[(27, 40), (27, 14)] * 6, speed=1.0)
+    scenario = tdp.Scenario(grid, (2, 2), (57, 2), obstacles=[box], name="node-covered")
+    for k in (1, 4):
+        episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=k, spacing=20.0))
+        assert episode.reached and episode.collisions == 0
+        assert [30, 30] in [list(n) for n in episode.nodes]
+        assert episode.detections == []
+
+
+def test_no_route_in_the_node_graph_follows_the_goal_layer_instead_of_waiting():
+    """A corridor world that deadlocked with the paper's lattice ("drop" leaves no node on the side route, so the
+    backup search finds no route): the robot now follows the goal layer, which knows the detour, and never waits."""
+    scenario = make_world("corridor", 100, 3)
+    config = tdp.NavigatorConfig(updates_per_move=4, placement="drop", switch_back="paper")
+    episode = tdp.simulate(scenario, config)
+    assert episode.reached and episode.collisions == 0
+    assert "wait" not in episode.modes
+    assert any(d["relevant"] for d in episode.detections)
+
+
+def test_evidence_leaves_the_backup_once_the_goal_layer_knows_a_route_at_least_as_short():
+    scenario = tdp.scenarios.get("sudden-blockage")
+    paper = tdp.simulate(scenario, tdp.NavigatorConfig(switch_back="paper"))
+    evidence = tdp.simulate(scenario, tdp.NavigatorConfig(switch_back="evidence"))
+    assert 0 < evidence.modes.count("backup") < paper.modes.count("backup")
+    assert evidence.ratio <= paper.ratio + 0.005
 
 
 @pytest.mark.parametrize("kwargs, message", [
     ({"nodes": 0}, "nodes"), ({"vision": -1}, "vision"), ({"updates_per_move": 0}, "updates_per_move"),
     ({"detect_window": 0}, "detect_window"), ({"detect_rise": -2}, "detect_rise"), ({"d_max": 0}, "d_max"),
     ({"neighbourhood": 5}, "neighbourhood"), ({"placement": "random"}, "placement"), ({"spacing": 0.5}, "spacing"),
+    ({"switch_back": "never"}, "switch_back"),
     ({"accelerating": "yes"}, "accelerating"),
 ])
 def test_invalid_config_raises(kwargs, message):

@@ -1,0 +1,63 @@
+"""The input contract of every public entry point: cells, flags and numbers, each refused with a ValueError that
+names the argument and what was wrong.
+
+A cell is a pair (row, col) of integers (Python or numpy integers; never a float, which would be silently
+truncated, nor a bool). A flag is a ``bool``. Counts and ticks are integers, never bools or floats.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+
+def integer(value, name: str, low: int | None = None) -> int:
+    """``value`` as an int if it is an integer (numpy integers included, bools not) >= ``low``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if low is not None and value < low:
+        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def optional_integer(value, name: str, low: int | None = None) -> int | None:
+    """None, or ``value`` checked by :func:`integer`."""
+    return None if value is None else integer(value, name, low)
+
+
+def number(value, name: str, low: float | None = None, *, inclusive: bool = True, finite: bool = True) -> float:
+    """``value`` as a float if it is a real number (not a bool, never NaN) >= ``low`` (> when not inclusive)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or math.isnan(value):
+        raise ValueError(f"{name} must be a number, got {value!r}")
+    if finite and not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    if low is not None and (value < low or (value == low and not inclusive)):
+        raise ValueError(f"{name} must be a number {'>=' if inclusive else '>'} {low}, got {value!r}")
+    return float(value)
+
+
+def flag(value, name: str) -> bool:
+    """``value`` if it is True or False (numpy bools included)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def pair(value, name: str) -> tuple[int, int]:
+    """``value`` as a (row, col) tuple of ints: two integers, never floats."""
+    try:
+        items = tuple(value)
+    except TypeError:
+        raise ValueError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
+    if len(items) != 2 or not all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in items):
+        raise ValueError(f"{name} must be a (row, col) pair of integers, got {value!r}")
+    return int(items[0]), int(items[1])
+
+
+def cell(value, shape: tuple[int, int], name: str) -> tuple[int, int]:
+    """``value`` as a (row, col) pair of ints inside a map of ``shape``."""
+    row, col = pair(value, name)
+    if not (0 <= row < shape[0] and 0 <= col < shape[1]):
+        raise ValueError(f"{name} {(row, col)} is outside the {shape[0]} x {shape[1]} map")
+    return row, col
