@@ -7,7 +7,6 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -20,6 +19,7 @@ def _config(args: argparse.Namespace, accelerating: bool):
 
 def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str) -> dict:
     import tdp
+    from tdp.cli import save_json
 
     from .episode import run_episode
     from .render import save_trace_figure
@@ -28,8 +28,7 @@ def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem:
     kind = "accelerating nodes" if accelerating else "plain DP"
     print(f"running {scenario.name} in PyBullet ({kind}, K = {args.updates})", flush=True)
     metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / f"{stem}.json").write_text(json.dumps(metrics, indent=1))
+    metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
     metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
     return metrics
 
@@ -42,14 +41,18 @@ def _summary(metrics: dict) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    metrics = _run_and_save(args, not args.no_accelerating, Path(args.out), "metrics")
+    from tdp.cli import output_folder
+
+    metrics = _run_and_save(args, not args.no_accelerating, output_folder(args.out), "metrics")
     print(_summary(metrics))
-    print(f"wrote {Path(args.out) / 'metrics.json'} and {metrics['figure']}")
+    print(f"wrote {metrics['json']} and {metrics['figure']}")
     return 0
 
 
 def compare(args: argparse.Namespace) -> int:
-    out = Path(args.out)
+    from tdp.cli import output_folder
+
+    out = output_folder(args.out)
     rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind)) for kind in ("accelerating", "plain-dp")]
     print(f"\n{args.scenario}, K = {args.updates}, PyBullet DIRECT")
     print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "

@@ -23,12 +23,12 @@ def list_scenarios(args: argparse.Namespace) -> int:
 
 def run(args: argparse.Namespace) -> int:
     """Run one episode and write metrics.json and episode.png into --out."""
-    import json
-
     import tdp
+    from tdp.cli import output_folder, save_json
     from tdp.plot import save_episode_figure
 
     scenario = tdp.scenarios.get(args.scenario)
+    out = output_folder(args.out)
     config = tdp.NavigatorConfig(accelerating=not args.no_accelerating, nodes=args.nodes, vision=args.vision,
                                  updates_per_move=args.updates, detect_window=args.detect_window,
                                  detect_rise=args.detect_rise, neighbourhood=args.neighbourhood,
@@ -36,24 +36,24 @@ def run(args: argparse.Namespace) -> int:
     print(f"running {scenario.name} ({'accelerating nodes' if config.accelerating else 'plain DP'}, "
           f"K = {config.updates_per_move})", flush=True)
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "metrics.json").write_text(json.dumps(episode.to_dict(), indent=1))
+    metrics = save_json(episode.to_dict(), out / "metrics.json")
     figure = save_episode_figure(scenario, episode, out / "episode.png")
     print(f"reached: {episode.reached} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
           f"{episode.oracle_length:.2f}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
           f"({sum(d['relevant'] for d in episode.detections)} relevant); planner "
           f"{episode.timings['total']['median']:.2f} ms/tick (median)")
-    print(f"wrote {out / 'metrics.json'} and {figure}")
+    print(f"wrote {metrics} and {figure}")
     return 0
 
 
 def plan(args: argparse.Namespace) -> int:
     """Plan on any loadable map: print the distance and path length, write a PNG of the path."""
     import tdp
+    from tdp.cli import output_folder
     from tdp.plot import save_path_figure
 
+    out = output_folder(args.out)
     grid = tdp.load_map(args.map, unknown_is_free=args.unknown_free)
     start = grid.check_free_cell(tuple(args.start), "--start")
     field = tdp.DistanceField(grid, args.goal, neighbourhood=args.neighbourhood, corner_cutting=args.corner_cutting)
@@ -71,7 +71,7 @@ def plan(args: argparse.Namespace) -> int:
     print(f"distance from {start} to {tuple(args.goal)}: {distance:.4f} cells "
           f"({distance * grid.resolution:.3f} m); path: {len(path)} cells, length {length:.4f}")
     title = f"{Path(args.map).name}: {args.neighbourhood}-neighbour, length {length:.2f} cells"
-    figure = save_path_figure(grid, path, Path(args.out) / "plan.png", title, field.distances())
+    figure = save_path_figure(grid, path, out / "plan.png", title, field.distances())
     print(f"figure: {figure}")
     return 0
 

@@ -19,11 +19,16 @@ single launch on the calling thread; a busy iteration gets a parallel launch of 
 All kernels take ndarrays, so a kernel compiles once per (neighbourhood, corner rule, layer kind) and not once per
 map. Kernels must live in a ``.py`` file: Taichi reads their source.
 """
+import contextlib
+import io
+import logging
 import math
 import os
 
-import numpy as np
-import taichi as ti
+os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout belongs to its user: no banner
+
+import numpy as np  # noqa: E402
+import taichi as ti  # noqa: E402
 
 from . import stencil
 
@@ -39,6 +44,10 @@ SERIAL_TILES = 512
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
+#: Iterations handed to one launch at most (kernel arguments are 32-bit).
+_CHUNK = 1 << 20
+#: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER.
+_REBASE = 1 << 29
 
 _initialised = False
 _on_cpu = True
@@ -60,8 +69,10 @@ def init_taichi() -> None:
     threads = os.environ.get("TDP_THREADS", "2")
     if not threads.isdigit() or int(threads) < 1:
         raise ValueError(f"TDP_THREADS must be a positive integer, got {threads!r}")
-    ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
-            real_matrix_scalarize=False, cpu_block_dim_adaptive=False)
+    with contextlib.redirect_stdout(io.StringIO()) as said:  # ti.init prints "Starting on arch=..."
+        ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
+                real_matrix_scalarize=False, cpu_block_dim_adaptive=False)
+    logging.getLogger(__name__).debug(said.getvalue().strip())
     _initialised = True
     _on_cpu = arch == ti.cpu
 
@@ -581,6 +592,21 @@ class _Layers:
         _trace(self.values, self.pen, 0, 0, PAD, PAD, PAD, PAD, 0.0, np.zeros((1, 2), np.int32), self.lanes,
                neighbourhood, corner_cutting)
 
+    def idle(self) -> bool:
+        """Whether the next iteration has nothing to do: the last one changed nothing and the host has stamped no
+        tile since (then both buffers hold the same values, and so would every later iteration's)."""
+        return int(self.counts[0]) == 0 and self.woken < self.tick
+
+    def rebase(self) -> None:
+        """Renumber iterations from 0 once they pass _REBASE: stamps of past iterations become -1 (inactive),
+        later ones keep their distance to the next iteration."""
+        if self.tick < _REBASE:
+            return
+        stamps = self.stamps.to_numpy()
+        self.stamps.from_numpy(np.where(stamps >= self.tick, stamps - self.tick, -1).astype(np.int32))
+        self.woken = max(self.woken - self.tick, -1)
+        self.tick = 0
+
     def _swap(self, iterations: int) -> int:
         """Account for ``iterations`` done: the buffers swap roles at each."""
         self.current ^= iterations % 2
@@ -652,6 +678,7 @@ class Engine:
         for layers, sr, sc, cap in self._kinds():
             for buffer in layers.buffers:
                 _reset(buffer, layers.pen, sr, sc, cap, layers.lanes)
+            layers.rebase()
             layers.activate_all()
         self.iterations = 0
 
@@ -670,8 +697,17 @@ class Engine:
             layers.warm_up(self.neighbourhood, self.corner_cutting)
 
     def step(self, k: int = 1) -> None:
-        """Run k synchronous iterations of every layer (only their active tiles)."""
-        self._iterate(k, np.zeros((0, 2), np.int32))
+        """Run k synchronous iterations of every layer (only their active tiles). Once an iteration changes
+        nothing and no edit is pending, every later one would change nothing either: they are counted, not run, so
+        any k returns at once on a settled field."""
+        nowhere = np.zeros((0, 2), np.int32)
+        while k > 0:
+            if all(layers.idle() for layers, _, _, _ in self._kinds()):
+                self.iterations += k
+                return
+            chunk = min(k, _CHUNK)
+            self._iterate(chunk, nowhere)
+            k -= chunk
 
     def changed(self) -> int:
         """Cells changed by the last iteration, all layers together."""
@@ -748,6 +784,7 @@ class Engine:
     def _iterate(self, k: int, cells: np.ndarray) -> np.ndarray:
         out = np.empty((k, len(cells), 1 + len(self.nodes)), np.float32)
         for layers, sr, sc, cap in self._kinds():
+            layers.rebase()
             layers.iterate(k, sr, sc, cap, cells, out, self.neighbourhood, self.corner_cutting)
         self.iterations += k
         return out

@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 
+from . import checks
 from .engine import Engine
 from .grid import GridMap
 
@@ -53,7 +54,7 @@ class DistanceField:
         goal = grid.check_free_cell(goal, "goal")
         self.d_max = check_cap(d_max, "d_max")
         self._engine = Engine(grid.occupied, goal, goal_cap=self.d_max, neighbourhood=neighbourhood,
-                              corner_cutting=corner_cutting)
+                              corner_cutting=checks.flag(corner_cutting, "corner_cutting"))
 
     @property
     def goal(self) -> tuple[int, int]:
@@ -72,8 +73,7 @@ class DistanceField:
 
     def step(self, k: int = 1) -> int:
         """Run ``k`` synchronous DP iterations (eqs. 5-7); return how many cells the last one changed."""
-        if isinstance(k, bool) or not isinstance(k, int) or k < 0:
-            raise ValueError(f"k must be a non-negative integer, got {k!r}")
+        k = checks.integer(k, "k", 0)
         self._engine.step(k)
         return self._engine.changed() if k else 0
 
@@ -84,8 +84,7 @@ class DistanceField:
         and waking the neighbours its border changes reach, until no tile changes (DESIGN 4, issue 6); the
         result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the rounds.
         """
-        if max_iters is not None and (isinstance(max_iters, bool) or not isinstance(max_iters, int) or max_iters < 1):
-            raise ValueError(f"max_iters must be a positive integer or None, got {max_iters!r}")
+        max_iters = checks.optional_integer(max_iters, "max_iters", 1)
         return self._engine.converge(max_iters)
 
     def distances(self) -> np.ndarray:
@@ -120,8 +119,9 @@ class DistanceField:
         """Mark cells (a bool mask of the map's shape, or (row, col) cells) as obstacles or, with
         ``occupied=False``, as free. Only cells whose state changes are sent to the engine."""
         cells = cells_from(self._grid.shape, cells_or_mask, "set_occupied")
+        occupied = checks.flag(occupied, "occupied")
         current = self._engine.occupied[cells[:, 0], cells[:, 1]]
-        self._engine.set_cells(cells[current != bool(occupied)], bool(occupied))
+        self._engine.set_cells(cells[current != occupied], occupied)
 
     def set_goal(self, cell: tuple[int, int]) -> None:
         """Move the goal (a free cell); distances follow over the next iterations."""
@@ -134,10 +134,4 @@ class DistanceField:
         return cell
 
     def _check_cell(self, cell, name: str) -> tuple[int, int]:
-        try:
-            row, col = (int(v) for v in cell)
-        except (TypeError, ValueError):
-            raise ValueError(f"{name} must be a (row, col) pair of integers, got {cell!r}") from None
-        if not self._grid.contains((row, col)):
-            raise ValueError(f"{name} {(row, col)} is outside the {self._grid.shape[0]} x {self._grid.shape[1]} map")
-        return row, col
+        return checks.cell(cell, self._grid.shape, name)

@@ -7,6 +7,7 @@ and :meth:`GridMap.cell_to_world` flip the rows. Occupancy is a bool array, True
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 from typing import NamedTuple
 
@@ -14,8 +15,19 @@ import numpy as np
 import yaml
 from PIL import Image, UnidentifiedImageError
 
+from . import checks
+
 IMAGE_SUFFIXES = (".png", ".pgm", ".ppm", ".pbm", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff")
 ROS_MODES = ("trinary", "scale", "raw")
+#: The largest map read from a file, in cells (8192 x 8192): larger images are refused before they are decoded.
+MAX_CELLS = 8192 * 8192
+#: MovingAI terrain letters (movingai.com/benchmarks/formats.html) for a ground robot: ground ('.', 'G') and swamp
+#: ('S', passable from ordinary terrain) are free; out of bounds ('@', 'O'), trees ('T') and water ('W', not
+#: passable from ordinary terrain) are obstacles.
+MOVINGAI_FREE = frozenset(".GS")
+MOVINGAI_BLOCKED = frozenset("@OTW")
+#: Pillow modes of 16-bit greyscale images: their shades are fractions of 65535 (Pillow scales a PGM's maxval).
+_SIXTEEN_BIT = ("I", "I;16", "I;16B", "I;16L", "I;16N")
 
 
 class GridMap:
@@ -75,14 +87,7 @@ class GridMap:
 
     def check_free_cell(self, cell, name: str) -> tuple[int, int]:
         """Return ``cell`` as a (row, col) tuple of ints if it is inside the map and free, else raise ValueError."""
-        try:
-            row, col = (int(v) for v in cell)
-            if (row, col) != tuple(cell):
-                raise TypeError
-        except (TypeError, ValueError):
-            raise ValueError(f"{name} must be a (row, col) pair of integers, got {cell!r}") from None
-        if not self.contains((row, col)):
-            raise ValueError(f"{name} {(row, col)} is outside the {self.shape[0]} x {self.shape[1]} map")
+        row, col = checks.cell(cell, self.shape, name)
         if self._occupied[row, col]:
             raise ValueError(f"{name} {(row, col)} is on an obstacle")
         return row, col
@@ -157,11 +162,14 @@ def _positive_int(path: Path, line: int, key: str, text: str) -> int:
 
 
 def _load_movingai(path: Path) -> GridMap:
-    """MovingAI ``.map``: '.' and 'G' passable, every other character blocked."""
+    """MovingAI ``.map``: the terrain letters of :data:`MOVINGAI_FREE` are free, those of
+    :data:`MOVINGAI_BLOCKED` obstacles; any other character is an error naming its line and column."""
     lines = _read_lines(path)
     _header_value(path, lines, 0, "type")
     height = _positive_int(path, 2, "height", _header_value(path, lines, 1, "height"))
     width = _positive_int(path, 3, "width", _header_value(path, lines, 2, "width"))
+    if height * width > MAX_CELLS:
+        raise ValueError(f"{path}: {height} x {width} cells is more than the {MAX_CELLS} cells tdp reads")
     if _header_value(path, lines, 3, "map") != "":
         raise ValueError(f"{path}, line 4: expected 'map', got {lines[3]!r}")
     rows = lines[4:4 + height]
@@ -170,10 +178,15 @@ def _load_movingai(path: Path) -> GridMap:
     for number, row in enumerate(rows, start=5):
         if len(row) != width:
             raise ValueError(f"{path}, line {number}: row has {len(row)} cells, header says width {width}")
+        unknown = set(row) - MOVINGAI_FREE - MOVINGAI_BLOCKED
+        if unknown:
+            column = min(row.index(ch) for ch in unknown)
+            raise ValueError(f"{path}, line {number}, column {column + 1}: unknown terrain {row[column]!r}; "
+                             f"expected one of {''.join(sorted(MOVINGAI_FREE | MOVINGAI_BLOCKED))}")
     if any(line.strip() for line in lines[4 + height:]):
         raise ValueError(f"{path}: more than the {height} rows the header announces")
     chars = np.array([list(row) for row in rows])
-    return GridMap(~np.isin(chars, [".", "G"]))
+    return GridMap(~np.isin(chars, sorted(MOVINGAI_FREE)))
 
 
 def load_scenarios(path: str | Path, grid: GridMap | None = None) -> list[Problem]:
@@ -205,6 +218,9 @@ def _scenario_row(path: Path, number: int, line: str, grid: GridMap | None) -> P
         optimal = float(fields[8])
     except ValueError:
         raise ValueError(f"{path}, line {number}: fields 3-8 must be integers and field 9 a number") from None
+    if not (math.isfinite(optimal) and optimal >= 0):
+        raise ValueError(f"{path}, line {number}: the optimal length must be a finite number >= 0, "
+                         f"got {fields[8]!r}")
     start, goal = (sy, sx), (gy, gx)
     if grid is not None:
         if (height, width) != grid.shape:
@@ -225,18 +241,43 @@ def _load_image(path: Path, threshold: float) -> GridMap:
 
 def _read_shade(path: Path, with_alpha: bool) -> tuple[np.ndarray, np.ndarray | None]:
     """Brightness in [0, 1] averaged over the colour channels (and alpha when ``with_alpha``, as map_server's
-    trinary mode does), plus the alpha channel in [0, 1] if the image has one."""
+    trinary mode does), plus the alpha channel in [0, 1] if the image has one. Shades are fractions of the image's
+    full scale whatever its depth (255 for 8 bits, 65535 for 16; a PGM's maxval is scaled by Pillow)."""
+    unreadable = (UnidentifiedImageError, OSError, SyntaxError, ValueError, Image.DecompressionBombError,
+                  Image.DecompressionBombWarning)
     try:
-        with Image.open(path) as image:
-            image.load()
-            has_alpha = image.mode in ("RGBA", "LA", "PA") or "transparency" in image.info
-            rgba = np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            image = Image.open(path)
     except FileNotFoundError:
         raise FileNotFoundError(f"image file not found: {path}") from None
-    except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as error:
+    except unreadable as error:
         raise ValueError(f"{path}: cannot read image ({error})") from None
+    with image:
+        if image.width * image.height > MAX_CELLS:
+            raise ValueError(f"{path}: {image.width} x {image.height} pixels is more than the {MAX_CELLS} cells "
+                             f"tdp reads")
+        try:
+            image.load()
+        except unreadable as error:
+            raise ValueError(f"{path}: cannot read image ({error})") from None
+        has_alpha = image.mode in ("RGBA", "LA", "PA") or "transparency" in image.info
+        rgba = _rgba(path, image)
     channels = rgba if (with_alpha and has_alpha) else rgba[..., :3]
     return channels.mean(axis=2), (rgba[..., 3] if has_alpha else None)
+
+
+def _rgba(path: Path, image: Image.Image) -> np.ndarray:
+    """(H, W, 4) float64 in [0, 1] from an 8- or 16-bit image."""
+    if image.mode in _SIXTEEN_BIT:
+        grey = np.asarray(image, dtype=np.float64)
+        if grey.size and (grey.min() < 0 or grey.max() > 65535):
+            raise ValueError(f"{path}: 32-bit integer pixels are not a map image (values beyond 0-65535)")
+        grey = grey / 65535.0
+        return np.stack([grey, grey, grey, np.ones_like(grey)], axis=2)
+    if image.mode == "F":
+        raise ValueError(f"{path}: floating-point pixels are not a map image; save it as 8- or 16-bit greyscale")
+    return np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
 
 
 def _load_ros(path: Path, unknown_is_free: bool) -> GridMap:

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import checks
 from .field import DistanceField
 from .grid import GridMap
 from .navigator import Navigator, NavigatorConfig, TickResult
@@ -151,9 +152,9 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
         raise ValueError(f"scenario must be a tdp.Scenario, got {type(scenario).__name__}")
     if not isinstance(config, NavigatorConfig):
         raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
-    limit = max_ticks or scenario.max_ticks or 4 * sum(scenario.grid.shape)
-    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
-        raise ValueError(f"max_ticks must be a positive integer, got {max_ticks!r}")
+    limit = checks.optional_integer(max_ticks, "max_ticks", 1)
+    if limit is None:
+        limit = scenario.max_ticks or 4 * sum(scenario.grid.shape)
     report = None
     if progress:
         def report(tick, robot):

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import checks
 from .grid import GridMap
 
 
@@ -45,19 +46,16 @@ class Obstacle:
 
     def __post_init__(self):
         try:
-            box = tuple(int(v) for v in self.box)
-            waypoints = tuple((int(r), int(c)) for r, c in self.waypoints)
+            box = tuple(checks.integer(v, "Obstacle box") for v in self.box)
+            waypoints = tuple(checks.pair(w, "Obstacle waypoint") for w in self.waypoints)
         except (TypeError, ValueError):
             raise ValueError(f"Obstacle box must be (r0, c0, r1, c1) and waypoints (row, col) pairs of integers, "
                              f"got box={self.box!r}, waypoints={self.waypoints!r}") from None
         if len(box) != 4 or box[2] <= box[0] or box[3] <= box[1]:
             raise ValueError(f"Obstacle box must be (r0, c0, r1, c1) with r1 > r0 and c1 > c0, got {self.box!r}")
-        if isinstance(self.speed, bool) or not isinstance(self.speed, (int, float)) or not 0 < self.speed < math.inf:
-            raise ValueError(f"Obstacle speed must be a positive number of cells per tick, got {self.speed!r}")
+        checks.number(self.speed, "Obstacle speed (cells per tick)", 0.0, inclusive=False)
         for name in ("appear_at", "vanish_at"):
-            value = getattr(self, name)
-            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < 0):
-                raise ValueError(f"Obstacle {name} must be a tick (integer >= 0) or None, got {value!r}")
+            checks.optional_integer(getattr(self, name), f"Obstacle {name} (a tick)", 0)
         if self.appear_at is not None and self.vanish_at is not None and self.vanish_at <= self.appear_at:
             raise ValueError(f"Obstacle vanish_at ({self.vanish_at}) must come after appear_at ({self.appear_at})")
         object.__setattr__(self, "box", box)
@@ -112,9 +110,12 @@ class Scenario:
                 raise ValueError(f"{name} {cell} is covered by an obstacle at tick 0")
             setattr(self, name, cell)
         self.target_waypoints = [self.grid.check_free_cell(w, "target waypoint") for w in self.target_waypoints]
-        if not (isinstance(self.target_speed, (int, float)) and 0 < self.target_speed < math.inf):
-            raise ValueError(f"target_speed must be a positive number of cells per tick, got {self.target_speed!r}")
-        if self.blocking is not None and not 0 <= self.blocking < len(self.obstacles):
+        self.target_speed = checks.number(self.target_speed, "target_speed (cells per tick)", 0.0, inclusive=False)
+        if not isinstance(self.name, str) or not isinstance(self.description, str):
+            raise ValueError(f"Scenario name and description must be strings, got {self.name!r}, {self.description!r}")
+        checks.optional_integer(self.max_ticks, "Scenario max_ticks", 1)
+        checks.optional_integer(self.change_tick, "Scenario change_tick (a tick)", 0)
+        if self.blocking is not None and not 0 <= checks.integer(self.blocking, "blocking") < len(self.obstacles):
             raise ValueError(f"blocking must index an obstacle (0..{len(self.obstacles) - 1}), got {self.blocking}")
 
     def occupancy(self, tick: int) -> np.ndarray:

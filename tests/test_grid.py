@@ -83,8 +83,16 @@ def test_plain_image_threshold(tmp_path):
 
 
 def test_movingai_map_letters(tmp_path):
+    """The format's terrain rules: swamp (S) is passable from ordinary ground, water (W) is not; '@', 'O' and 'T'
+    are blocked. (Swamp was read as blocked before.)"""
     path = write(tmp_path / "t.map", "type octile\r\nheight 2\r\nwidth 4\r\nmap\r\n.G@T\r\nOSW.")
-    np.testing.assert_array_equal(tdp.load_map(path).occupied, [[False, False, True, True], [True, True, True, False]])
+    np.testing.assert_array_equal(tdp.load_map(path).occupied, [[False, False, True, True], [True, False, True, False]])
+
+
+def test_movingai_unknown_terrain_letter_is_an_error_naming_line_and_column(tmp_path):
+    path = write(tmp_path / "t.map", "type octile\nheight 2\nwidth 3\nmap\n...\n.x.\n")
+    with pytest.raises(ValueError, match=r"line 6, column 2: unknown terrain 'x'"):
+        tdp.load_map(path)
 
 
 def test_scen_tolerates_crlf_no_final_newline_and_trailing_text(tmp_path):

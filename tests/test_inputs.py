@@ -1,0 +1,179 @@
+"""Bad and unusual input: each case here was silently wrong, a traceback or a hang before, and is now a clear
+ValueError naming what was wrong, or the right answer."""
+import struct
+import subprocess
+import sys
+import time
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import tdp
+from tdp.cli import output_folder, save_json
+
+ROOT = Path(__file__).resolve().parents[1]
+ROS_YAML = "image: {image}\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
+
+
+def cli(*args, cwd=ROOT):
+    return subprocess.run([sys.executable, *args], cwd=cwd, capture_output=True, text=True, timeout=300)
+
+
+# -- maps ---------------------------------------------------------------------------------------------------------
+def test_sixteen_bit_pgm_through_a_ros_yaml_follows_map_servers_shades(tmp_path):
+    """Pixels 0, 1000, 30000, 65535 of 65535: occupied, occupied, unknown (an obstacle), free. They were clipped
+    at 255 on the way through Pillow, giving [[1, 0, 0, 0]]."""
+    pixels = np.array([[0, 1000, 30000, 65535]], ">u2")
+    (tmp_path / "m.pgm").write_bytes(b"P5\n4 1\n65535\n" + pixels.tobytes())
+    (tmp_path / "m.yaml").write_text(ROS_YAML.format(image="m.pgm"))
+    np.testing.assert_array_equal(tdp.load_map(tmp_path / "m.yaml").occupied, [[True, True, True, False]])
+    (tmp_path / "a.pgm").write_text("P2\n4 1\n65535\n0 1000 30000 65535\n")
+    np.testing.assert_array_equal(tdp.load_map(tmp_path / "a.pgm", threshold=0.5).occupied,
+                                  [[True, True, True, False]])
+
+
+def test_sixteen_bit_png_with_a_threshold(tmp_path):
+    Image.fromarray(np.array([[0, 1000, 30000, 65535]], np.uint16)).save(tmp_path / "m.png")
+    np.testing.assert_array_equal(tdp.load_map(tmp_path / "m.png", threshold=0.5).occupied,
+                                  [[True, True, True, False]])
+    np.testing.assert_array_equal(tdp.load_map(tmp_path / "m.png", threshold=0.4).occupied,
+                                  [[True, True, False, False]])
+
+
+def test_pgm_with_a_small_maxval_reads_shades_as_fractions_of_it(tmp_path):
+    (tmp_path / "m.pgm").write_bytes(b"P5\n4 1\n100\n" + bytes([0, 40, 60, 100]))
+    np.testing.assert_array_equal(tdp.load_map(tmp_path / "m.pgm", threshold=0.5).occupied,
+                                  [[True, True, False, False]])
+
+
+def png_header_only(path: Path, width: int, height: int) -> Path:
+    """A PNG whose header declares width x height greyscale pixels, with no pixel data to speak of."""
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    header = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(b"")) +
+                     chunk(b"IEND", b""))
+    return path
+
+
+@pytest.mark.parametrize("side", [30000, 9000])  # Pillow's own bomb limit, and ours (8192 x 8192)
+def test_an_image_too_large_to_be_a_map_is_a_clear_error(tmp_path, side):
+    path = png_header_only(tmp_path / "huge.png", side, side)
+    with pytest.raises(ValueError, match="huge.png"):
+        tdp.load_map(path)
+
+
+def test_plan_on_an_image_too_large_is_one_error_line(tmp_path):
+    path = png_header_only(tmp_path / "huge.png", 30000, 30000)
+    done = cli("-m", "tdp", "plan", str(path), "--start", "0", "0", "--goal", "1", "1", "--out", str(tmp_path / "o"))
+    assert done.returncode == 2 and done.stderr.startswith("error:") and "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("length", ["nan", "-7", "inf"])
+def test_scen_optimal_length_must_be_a_finite_non_negative_number(tmp_path, length):
+    path = tmp_path / "s.scen"
+    path.write_text(f"version 1\n0\tm.map\t4\t4\t0\t0\t3\t3\t{length}\n")
+    with pytest.raises(ValueError, match="line 2: the optimal length"):
+        tdp.load_scenarios(path)
+
+
+# -- arguments ----------------------------------------------------------------------------------------------------
+GRID = tdp.GridMap(np.zeros((10, 10), bool))
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: tdp.simulate(tdp.scenarios.get("static"), max_ticks=0), "max_ticks must be an integer >= 1, got 0"),
+    (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), max_ticks=-5), "max_ticks must be an integer >= 1, got -5"),
+    (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), change_tick="soon"), "change_tick .* must be an integer"),
+    (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), target_speed=True), "target_speed"),
+    (lambda: tdp.Obstacle(box=(0.5, 0, 2.9, 3)), "box"),
+    (lambda: tdp.Obstacle(box=(0, 0, 2, 3), waypoints=[(1.5, 2)]), "waypoints"),
+    (lambda: tdp.Obstacle(box=(0, 0, 2, 3), waypoints=[(1, 2, 3)]), "waypoints"),
+    (lambda: tdp.DistanceField(GRID, (0, 0)).distance((0.9, 0.9)), "cell must be a \\(row, col\\) pair of integers"),
+    (lambda: tdp.DistanceField(GRID, (0, 0), corner_cutting="no"), "corner_cutting must be True or False"),
+    (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied([(1, 1)], occupied="yes"), "occupied must be True"),
+    (lambda: tdp.DistanceField(GRID, (0, 0)).step(2.0), "k must be an integer"),
+    (lambda: tdp.Navigator(GRID, (0, 0), (9, 9)).set_goal((2.5, 3.7)), "goal must be a \\(row, col\\) pair"),
+    (lambda: tdp.Navigator(GRID, (0, 0), (9, 9)).move_robot((-5, 100)), "robot cell \\(-5, 100\\) is outside"),
+    (lambda: tdp.Navigator(np.zeros((10, 10), bool), (0, 0), (9, 9)), "grid must be a tdp.GridMap"),
+    (lambda: GRID.check_free_cell((True, 2), "start"), "start must be a \\(row, col\\) pair of integers"),
+])
+def test_bad_arguments_are_clear_errors(make, message):
+    with pytest.raises(ValueError, match=message):
+        make()
+
+
+def test_numpy_integers_are_cells():
+    field = tdp.DistanceField(GRID, (np.int64(0), np.int32(0)))
+    field.converge()
+    assert field.distance(np.array([0, 4])) == 4.0 and field.successor((np.int8(0), np.int16(1))) == (0, 0)
+
+
+def test_step_counts_beyond_32_bits_and_returns_at_once_on_a_settled_field():
+    """step(2**31) then converge() ended in a TypeError from Taichi; step(3 * 10**9) never returned."""
+    field = tdp.DistanceField(GRID, (0, 0))
+    field.converge()
+    began = time.perf_counter()
+    field.step(3 * 10**9)
+    field.step(2**31)
+    assert time.perf_counter() - began < 5
+    assert field.iterations == 3 * 10**9 + 2**31
+    field.converge()
+    assert field.distance((9, 9)) == pytest.approx(9 * np.sqrt(2), rel=1e-6)
+    field.set_occupied([(5, 5)])
+    field.step(1000)  # the edit runs, then the rest is counted
+    assert field.iterations == 1000
+
+
+def test_a_covered_goal_emits_nothing():
+    """Decided: covering the goal is a map change like any other; the goal emits nothing while covered (an obstacle
+    wins over a source), so distances rise under step() (for ever with d_max = inf) and converge() says inf."""
+    field = tdp.DistanceField(GRID, (0, 0))
+    field.converge()
+    field.set_occupied([(0, 0)])
+    field.step(3)
+    assert field.distance((0, 1)) > 1.0
+    field.converge()
+    assert np.isinf(field.distances()).all() and field.path((5, 5)) == []
+    field.set_occupied([(0, 0)], occupied=False)
+    field.converge()
+    assert field.distance((0, 1)) == 1.0
+
+
+# -- command lines and output -------------------------------------------------------------------------------------
+def test_cli_max_ticks_zero_is_an_error_not_a_success(tmp_path):
+    done = cli("-m", "tdp", "run", "--scenario", "static", "--max-ticks", "0", "--out", str(tmp_path))
+    assert done.returncode == 2 and "max_ticks must be an integer >= 1, got 0" in done.stderr
+    assert "reached" not in done.stdout
+
+
+@pytest.mark.parametrize("command", [
+    ["-m", "tdp", "run", "--scenario", "static"],
+    ["-m", "tdp", "plan", "tests/data/arena.map", "--start", "1", "1", "--goal", "3", "3"],
+    ["-m", "sim", "run", "--scenario", "static"],
+])
+@pytest.mark.parametrize("through", [False, True])
+def test_an_output_folder_that_cannot_be_is_refused_before_the_work(tmp_path, command, through):
+    """--out naming a file (or a path through one) used to fail after the whole run, losing it."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    out = blocker / "sub" if through else blocker
+    began = time.perf_counter()
+    done = cli(*command, "--out", str(out))
+    assert done.returncode == 2 and done.stderr.startswith("error: --out") and "Traceback" not in done.stderr
+    assert "running" not in done.stdout and time.perf_counter() - began < 60
+
+
+def test_output_folder_is_made_and_checked(tmp_path):
+    assert output_folder(tmp_path / "a" / "b").is_dir()
+
+
+def test_results_that_cannot_be_written_where_asked_are_kept_elsewhere(tmp_path, capsys):
+    gone = tmp_path / "gone"
+    saved = save_json({"ratio": 1.0}, gone / "metrics.json")
+    assert saved != gone / "metrics.json" and '"ratio": 1.0' in saved.read_text()
+    assert str(saved) in capsys.readouterr().err
+    saved.unlink()
