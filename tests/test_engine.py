@@ -191,3 +191,24 @@ def test_converge_cut_short_by_max_rounds_leaves_iterations_to_finish_the_job(mo
     np.testing.assert_array_equal(cut.goal_distances(), full.goal_distances())
     for j in range(len(nodes)):
         np.testing.assert_array_equal(cut.node_distances(j), full.node_distances(j))
+
+
+def test_iteration_numbers_rebase_without_changing_anything(monkeypatch):
+    """Tile stamps are renumbered before they could overflow 32 bits; with a tiny rebase point the tiled engine
+    still equals dense iterations through edits and goal moves."""
+    monkeypatch.setattr(engine_module, "_REBASE", 5)
+    rng = np.random.default_rng(11)
+    occupied = random_map(30, 33, 0.15, 11)
+    nodes = np.argwhere(~occupied)[::41]
+    tiled, dense = (Engine(occupied, (0, 0), nodes=nodes, node_cap=8.0) for _ in range(2))
+    for iteration in range(40):
+        if iteration % 6 == 2:
+            cells = np.argwhere(rng.random(occupied.shape) < 0.02)
+            for engine in (tiled, dense):
+                engine.set_cells(cells, bool(iteration % 4))
+        dense.activate_all()
+        for engine in (tiled, dense):
+            engine.step()
+        np.testing.assert_array_equal(tiled.goal_distances(), dense.goal_distances())
+        for j in range(len(nodes)):
+            np.testing.assert_array_equal(tiled.node_distances(j), dense.node_distances(j))
