@@ -24,6 +24,10 @@ from .stencil import check_neighbourhood
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
 SWITCH_BACK = ("evidence", "paper")
+#: With switch_back="evidence", the goal layer's route wins when it is at most this fraction longer than the
+#: backup's estimate: the estimate reads node layers that are at most the true lengths while they rise, while the
+#: route's length counts every detour the goal layer still holds around boxes that are moving far ahead.
+EVIDENCE_SLACK = 0.1
 
 
 def _check_int(value, name: str, low: int) -> int:
@@ -312,7 +316,7 @@ class Navigator:
         estimated to cost from R. The successors only ever make legal moves on the current map, so a chain that
         reaches G is a real route of that length; while the news of a cut is still travelling, the chain runs into
         the cut and does not reach G."""
-        budget = self._backup_cost_from_robot()
+        budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
         limit = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
         chain = [self.robot] + self.engine.trace(0, self.robot, limit)
         if chain[-1] != self.goal:
