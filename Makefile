@@ -23,6 +23,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.convergence
 	$(PY) -m benchmarks.blockage
 	$(PY) -m benchmarks.paper
+	$(PY) -m benchmarks.worlds
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results
