@@ -28,6 +28,9 @@ SWITCH_BACK = ("evidence", "paper")
 #: backup's estimate: the estimate reads node layers that are at most the true lengths while they rise, while the
 #: route's length counts every detour the goal layer still holds around boxes that are moving far ahead.
 EVIDENCE_SLACK = 0.1
+#: How far (cells) a value of the goal layer may sit below its successor's plus the move and still count as
+#: settled: float rounding only; a value still rising after a change is short by about a cell or more.
+SETTLED_CELLS = 0.25
 
 
 def _check_int(value, name: str, low: int) -> int:
@@ -312,16 +315,24 @@ class Navigator:
             self.state, self._subgoal = "dp", None
 
     def _goal_layer_beats_backup(self) -> bool:
-        """Whether the goal layer's successors lead from R to G by a route no longer than what the backup is
-        estimated to cost from R. The successors only ever make legal moves on the current map, so a chain that
-        reaches G is a real route of that length; while the news of a cut is still travelling, the chain runs into
-        the cut and does not reach G."""
+        """Whether the goal layer can be trusted again and knows a route no longer than the backup's.
+
+        The successors only ever make legal moves on the current map, so a chain from R that reaches G is a real
+        route; while the news of a cut is still travelling, the chain runs into the cut and does not reach G. The
+        route must be at most EVIDENCE_SLACK longer than the backup's estimate from R, and settled near the robot:
+        along its first s cells each value equals its successor's plus the move (within SETTLED_CELLS), i.e. no
+        change is still arriving where the robot is about to drive (further on it has time to settle)."""
         budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
         limit = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
         chain = [self.robot] + self.engine.trace(0, self.robot, limit)
         if chain[-1] != self.goal:
             return False
-        return sum(math.dist(a, b) for a, b in zip(chain, chain[1:])) <= budget
+        steps = np.hypot(*np.diff(np.array(chain), axis=0).T)
+        if steps.sum() > budget:
+            return False
+        near = int(np.searchsorted(np.cumsum(steps), self.spacing)) + 1
+        values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
+        return bool((values[1:] + steps[:near] - values[:-1] <= SETTLED_CELLS).all())
 
     def _backup_cost_from_robot(self) -> float:
         """The backup's estimated cost from R: the subgoal's layer at R plus the rest of the last path (inf when the
