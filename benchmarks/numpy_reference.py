@@ -1,6 +1,6 @@
 """A vectorised numpy implementation of the same all-layer update as tdp's engine: the benchmarks' reference.
 
-Same layers, same windows, same padding and penalty trick (DESIGN 4); one array per layer kind, every move a
+Same layers, same windows, same padding and penalty trick (ARCHITECTURE §4); one array per layer kind, every move a
 shifted-slice operation over all layers at once.
 """
 from __future__ import annotations

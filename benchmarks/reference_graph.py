@@ -8,7 +8,7 @@ from tdp import stencil
 
 
 def grid_graph(occupied: np.ndarray, neighbourhood: int = 16, corner_cutting: bool = False):
-    """CSR matrix with an edge V -> V + (dr, dc) of weight |move| for every move allowed by DESIGN 4."""
+    """CSR matrix with an edge V -> V + (dr, dc) of weight |move| for every move allowed by ARCHITECTURE §4."""
     rows, cols = occupied.shape
     reach = stencil.REACH
     free = np.zeros((rows + 2 * reach, cols + 2 * reach), bool)

@@ -1,1 +1,1 @@
-"""PyBullet layer of tdp: a differential-drive robot planned by tdp among box obstacles (DESIGN 7)."""
+"""PyBullet layer of tdp: a differential-drive robot planned by tdp among box obstacles (ARCHITECTURE §8)."""

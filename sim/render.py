@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 import tdp
-from tdp.plot import MODE_COLOURS, _box_patch, pyplot, draw_map, save_figure
+from tdp.plot import MODE_COLOURS, box_patch, pyplot, draw_map, save_figure
 
 
 def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
@@ -28,8 +28,8 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
         r0, c0, r1, c1 = obstacle.box
         ax.plot(corners[:, 1] + (c1 - c0) / 2 - 0.5, corners[:, 0] + (r1 - r0) / 2 - 0.5, "-", color="tab:brown",
                 lw=1, alpha=0.7)
-        ax.add_patch(_box_patch(plt, obstacle.footprint(ticks[0]), fill=False, ec="tab:brown", ls="--"))
-        ax.add_patch(_box_patch(plt, obstacle.footprint(ticks[-1]), color="tab:brown", alpha=0.6))
+        ax.add_patch(box_patch(plt, obstacle.footprint(ticks[0]), fill=False, ec="tab:brown", ls="--"))
+        ax.add_patch(box_patch(plt, obstacle.footprint(ticks[-1]), color="tab:brown", alpha=0.6))
     oracle = np.array(metrics["oracle_trajectory"])
     ax.plot(oracle[:, 1], oracle[:, 0], ":", color="0.35", lw=1.3, label="oracle (grid)")
     trace = metrics["trace"]

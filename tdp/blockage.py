@@ -1,4 +1,4 @@
-"""Blockage monitor (paper 4.1 as reconstructed in DESIGN 5.4) and relevance to the robot's current path."""
+"""Blockage monitor (paper 4.1 as reconstructed in ARCHITECTURE §5.4) and relevance to the robot's current path."""
 from __future__ import annotations
 
 from collections import deque

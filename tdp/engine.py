@@ -1,6 +1,6 @@
-"""Taichi fields and kernels of the DP: every layer relaxed in parallel on the CPU threads (paper eqs. 5-7, 10-12).
+"""Taichi fields and kernels of the DP: every layer relaxed in parallel, on CPU threads or a GPU (eqs. 5-7, 10-12).
 
-The only module of tdp that imports taichi. Layout (DESIGN 4):
+The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
 
 * the goal layer is one (H + 4) x (W + 4) float32 array, two cells of padding on each side;
 * node layers are windows of side 2r + 1 around their nodes, r = ceil(cap); ``LANES`` of them are packed per cell
@@ -46,8 +46,8 @@ _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
-#: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER.
-_REBASE = 1 << 29
+#: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
+REBASE_AT = 1 << 29
 
 _initialised = False
 _on_cpu = True
@@ -598,9 +598,9 @@ class _Layers:
         return int(self.counts[0]) == 0 and self.woken < self.tick
 
     def rebase(self) -> None:
-        """Renumber iterations from 0 once they pass _REBASE: stamps of past iterations become -1 (inactive),
+        """Renumber iterations from 0 once they pass REBASE_AT: stamps of past iterations become -1 (inactive),
         later ones keep their distance to the next iteration."""
-        if self.tick < _REBASE:
+        if self.tick < REBASE_AT:
             return
         stamps = self.stamps.to_numpy()
         self.stamps.from_numpy(np.where(stamps >= self.tick, stamps - self.tick, -1).astype(np.int32))
@@ -631,7 +631,7 @@ class Engine:
 
     Cells are ``(row, col)``; distances are in cells. ``occupied`` is a bool (H, W) array, True = obstacle.
     Map edits and goal moves take effect at the next iteration; nothing is recompiled. Each iteration relaxes
-    only the tiles whose inputs changed (DESIGN 4, active tiles); :meth:`activate_all` forces a dense one.
+    only the tiles whose inputs changed (ARCHITECTURE §7); :meth:`activate_all` forces a dense one.
     """
 
     def __init__(self, occupied: np.ndarray, goal: tuple[int, int], *, goal_cap: float = math.inf,

@@ -81,7 +81,7 @@ class DistanceField:
         """Relax to the exact fixed point (the setup phase); return the number of rounds it took.
 
         Starts again from the initial state and settles 8 x 8 tiles in place, each sweeping in cache until stable
-        and waking the neighbours its border changes reach, until no tile changes (DESIGN 4, issue 6); the
+        and waking the neighbours its border changes reach, until no tile changes (ARCHITECTURE §7); the
         result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the rounds.
         """
         max_iters = checks.optional_integer(max_iters, "max_iters", 1)

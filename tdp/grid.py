@@ -1,6 +1,6 @@
 """GridMap and the map loaders: MovingAI ``.map``/``.scen``, ROS map_server ``.yaml`` + image, plain images.
 
-Conventions (DESIGN 3): cells are ``(row, col)`` with row 0 the top row of the file or image; MovingAI's
+Conventions (ARCHITECTURE §3): cells are ``(row, col)`` with row 0 the top row of the file or image; MovingAI's
 ``(x, y)`` is ``(col, row)``. ROS's origin is the pose of the lower-left pixel, so :meth:`GridMap.world_to_cell`
 and :meth:`GridMap.cell_to_world` flip the rows. Occupancy is a bool array, True = obstacle.
 """

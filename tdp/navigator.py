@@ -1,4 +1,4 @@
-"""The navigator: the loop of the paper's Fig. 4 (sections 4.1-4.3, DESIGN 5.4-5.6).
+"""The navigator: the loop of the paper's Fig. 4 (sections 4.1-4.3, ARCHITECTURE §5.4-5.6).
 
 Setup (``converge``), then per tick: K DP iterations with the blockage monitor after each, the relevance test of
 new blockages against the robot's current path, a backup path by uniform-cost search over the node graph, subgoal
@@ -17,7 +17,7 @@ from .blockage import BlockageMonitor, crossing_blocked, segment_near_path
 from .engine import Engine
 from .field import cells_from, check_cap
 from .grid import GridMap
-from .nodes import PLACEMENTS, NodeGraph, place_nodes
+from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, place_nodes
 from .search import uniform_cost_search
 from .stencil import check_neighbourhood
 
@@ -53,9 +53,9 @@ class NavigatorConfig:
     accelerating: use accelerating nodes (False: plain DP, the paper's baseline).
     nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
     spacing: lattice spacing s in cells, overriding ``nodes`` when given.
-    vision: DmaxQ / s (DESIGN 5.2). updates_per_move: K, DP iterations per robot move.
+    vision: DmaxQ / s (ARCHITECTURE §5.2). updates_per_move: K, DP iterations per robot move.
     detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
-    d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (DESIGN 4).
+    d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
     placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
     nearest the centre), "drop" (left out, the paper) or "nudge" (a free cell within s/4); see
     :func:`tdp.nodes.place_nodes`.
@@ -212,7 +212,7 @@ class Navigator:
 
         The mode is "dp" or "backup" while the robot moves, "wait" while it has nowhere to go: the robot follows
         the goal layer when the node graph has no route (the search is retried every tick) and waits only when
-        neither offers a move (DESIGN 5.5, revision 2).
+        neither offers a move (ARCHITECTURE §5.5).
         """
         new_pairs, dp_s, monitor_s = self._iterate()
         began = time.perf_counter()
@@ -262,7 +262,7 @@ class Navigator:
 
     def _active_nodes(self, iteration: int | None = None) -> np.ndarray:
         """Nodes active at DP iteration ``iteration`` (default: the last): not covered by an obstacle, and settled
-        since they were last uncovered (DESIGN 5.1, revision 2)."""
+        since they were last uncovered (ARCHITECTURE §5.1)."""
         return self._active_from <= (self.engine.iterations if iteration is None else iteration)
 
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
@@ -342,8 +342,8 @@ class Navigator:
         return self._layer_at_robot(self._subgoal) + self._cost_to_goal[self._subgoal]
 
     def _search(self, result: TickResult, keep_count: bool) -> None:
-        """Uniform-cost search R -> G; on success follow the subgoal (DESIGN 5.5), else follow the goal layer and
-        search again next tick."""
+        """Uniform-cost search R -> G; on success follow the subgoal (ARCHITECTURE §5.5), else follow the goal
+        layer and search again next tick."""
         graph = self._graph(without_blocked=True)
         found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)
         if found is None:
@@ -354,31 +354,16 @@ class Navigator:
             self._path_cost = cost
         result.backup_path, result.backup_cost = path, cost
         self.state = "backup"
-        self._subgoal = self._choose_subgoal(path, graph)
+        self._subgoal = choose_subgoal(path, graph)
         remaining = 0.0
         self._cost_to_goal = {path[-1]: 0.0}
         for a, b in zip(path[-2::-1], path[:0:-1]):
             remaining += graph.weight(a, b)
             self._cost_to_goal[a] = remaining
 
-    def _choose_subgoal(self, path: list[int], graph: NodeGraph) -> int:
-        """Q2 (the second point after R), Q1 if R is outside Q2's vision, the last point if the path is shorter
-        (DESIGN 5.5). Q2 may be G itself (path <R, Q1, G>): then "R outside its vision" means layer_0[R] >= DmaxQ,
-        and the robot heads for Q1 rather than follow a goal layer that may still be stale. A node the robot
-        already stands on is skipped."""
-        if len(path) > 2 and self._layer_at_robot(path[1], graph) == 0:
-            path = path[:1] + path[2:]
-        index = min(2, len(path) - 1)
-        if index == 2 and self._layer_at_robot(path[2], graph) >= self.vision:
-            index = 1
-        return path[index]
-
     def _layer_at_robot(self, vertex: int, graph: NodeGraph | None = None) -> float:
         """The value at R of the layer of graph vertex ``vertex`` (a node, or G for the goal layer)."""
-        graph = graph or self._graph()
-        if vertex == graph.goal_id:
-            return graph.robot_goal
-        return float(graph.robot_readings[vertex])
+        return (graph or self._graph()).at_robot(vertex)
 
     def route(self, steps: int) -> list[tuple[int, int]]:
         """Up to ``steps`` cells the robot would follow from R now: successors of the goal layer, or in backup mode

@@ -1,4 +1,4 @@
-"""Accelerating-node placement (paper 3.3, DESIGN 5.1) and the node graph (eq. 14)."""
+"""Accelerating-node placement (paper 3.3, ARCHITECTURE §5.1) and the node graph (eq. 14)."""
 from __future__ import annotations
 
 import math
@@ -29,7 +29,7 @@ PLACEMENTS = ("free", "drop", "nudge")
 def place_nodes(occupied: np.ndarray, *, count: int | None = None, spacing: float | None = None,
                 rule: str = "free") -> Lattice:
     """Nodes of a uniform lattice of spacing s: one per s x s lattice cell, centred at ((k + 1/2) s) in rows and
-    columns (DESIGN 5.1).
+    columns (ARCHITECTURE §5.1).
 
     Give ``count`` (s follows from the map's area) or ``spacing`` s in cells. ``rule`` says what happens where the
     centre is on an obstacle: "free" takes the free cell of the lattice cell nearest its centre (so a corridor or a
@@ -148,6 +148,10 @@ class NodeGraph:
         for other in np.flatnonzero(weights < self.vision):
             yield int(other), float(weights[other])
 
+    def at_robot(self, vertex: int) -> float:
+        """The value at R of the layer of ``vertex`` (a node, or G for the goal layer), before any edge is dropped."""
+        return self.robot_goal if vertex == self.goal_id else float(self.robot_readings[vertex])
+
     def weight(self, a: int, b: int) -> float:
         """The weight of edge a-b (vertex ids), inf if there is none."""
         value = float(self._weights(a)[b])
@@ -157,3 +161,16 @@ class NodeGraph:
         """Every node-node edge (a < b, weight) of the current graph."""
         a, b = np.nonzero(np.triu(self.pairs < self.vision, k=1))
         return [(int(i), int(j), float(self.pairs[i, j])) for i, j in zip(a, b)]
+
+
+def choose_subgoal(path: list[int], graph: NodeGraph) -> int:
+    """The vertex a backup heads for on ``path`` = <R, Q1, Q2, ..., G> (paper 4.2, ARCHITECTURE §5.5): Q2, or Q1
+    when R is outside Q2's vision (its layer at R >= DmaxQ), or the last point when the path is shorter. Q2 may be G
+    itself (path <R, Q1, G>): then "outside its vision" means layer_0[R] >= DmaxQ, and the robot heads for Q1 rather
+    than follow a goal layer that may still be stale. A node the robot already stands on is skipped."""
+    if len(path) > 2 and graph.at_robot(path[1]) == 0:
+        path = path[:1] + path[2:]
+    index = min(2, len(path) - 1)
+    if index == 2 and graph.at_robot(path[2]) >= graph.vision:
+        index = 1
+    return path[index]

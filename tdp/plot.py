@@ -60,7 +60,8 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
 MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "oracle": "tab:gray"}
 
 
-def _box_patch(plt, box, **style):
+def box_patch(plt, box, **style):
+    """A matplotlib rectangle covering the cells of ``box`` = (r0, c0, r1, c1) in a :func:`draw_map` axes."""
     r0, c0, r1, c1 = box
     return plt.Rectangle((c0 - 0.5, r0 - 0.5), c1 - c0, r1 - r0, **style)
 
@@ -80,10 +81,10 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
     last = episode.ticks
     for obstacle in scenario.obstacles:
         first = obstacle.appear_at or 0
-        ax.add_patch(_box_patch(plt, obstacle.footprint(first), fill=False, ec="tab:brown", lw=1.2, ls="--"))
+        ax.add_patch(box_patch(plt, obstacle.footprint(first), fill=False, ec="tab:brown", lw=1.2, ls="--"))
         end = min(last, (obstacle.vanish_at - 1) if obstacle.vanish_at else last)
         if obstacle.present(end):
-            ax.add_patch(_box_patch(plt, obstacle.footprint(end), color="tab:brown", alpha=0.6))
+            ax.add_patch(box_patch(plt, obstacle.footprint(end), color="tab:brown", alpha=0.6))
     oracle = np.array(episode.oracle_trajectory)
     ax.plot(oracle[:, 1], oracle[:, 0], ":", color="0.35", lw=1.3, label="oracle")
     trajectory = np.array(episode.trajectory)

@@ -5,8 +5,8 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
 * ``cluttered``: static clutter and 3-6 boxes sliding back and forth a cell clear of the clutter, over open
   ground: no route is ever cut, so a blockage detection there is suspect unless a box really closed a gap.
 * ``rooms``: a 3 x 3 grid of rooms with a door in every wall; a box closes a door on the robot's route (drawn
-  among those more than a fifth of the side from the start) while it drives, and in half the worlds a second box closes a door on
-  the detour a little later.
+  among those more than a fifth of the side from the start) while it drives, and in half the worlds a second box
+  closes a door on the detour a little later.
 * ``corridor``: a long corridor between two halls and a longer side route; a box drives out of an alcove into the
   corridor ahead of the robot and parks there for good.
 * ``clearing``: a wall with a short passage, plugged, and a long one; the plug vanishes mid-journey.

@@ -1,4 +1,4 @@
-"""The named scenarios of the paper's section 5, shared by the grid runner and PyBullet (DESIGN 6).
+"""The named scenarios of the paper's section 5, shared by the grid runner and PyBullet (ARCHITECTURE §6).
 
 All use a 100 x 100 map made in code: the robot starts top-left, the goal is bottom-right, and a wall (rows 44-47)
 crosses the map with two passages, A in the middle (cols 45-54, on the diagonal: the short way) and B on the left

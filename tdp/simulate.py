@@ -18,7 +18,7 @@ from .world import Scenario, box_distance
 
 @dataclass
 class Episode:
-    """Metrics of one run (DESIGN 6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
+    """Metrics of one run (ARCHITECTURE §6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
     max; the kernels are compiled in the setup phase, before the first tick)."""
 
     scenario: str

@@ -3,7 +3,7 @@
 A move is ``(dr, dc)`` from a cell V to its neighbour Z = V + (dr, dc), in cells. Its cost is its Euclidean
 length (1, sqrt 2 or sqrt 5). ``crossed`` lists the offsets, relative to V, of the cells the move's segment passes
 through besides V and Z; with the default rule (no corner cutting) they must be free for the move to be allowed
-(DESIGN 4). The order of :func:`moves` is the fixed tie order of successors: straight, diagonal, knight.
+(ARCHITECTURE §4). The order of :func:`moves` is the fixed tie order of successors: straight, diagonal, knight.
 """
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ def _sign(x: int) -> int:
 
 
 def _crossed_cells(dr: int, dc: int) -> tuple[tuple[int, int], ...]:
-    """Cells (offsets from V) that the segment from V to V + (dr, dc) passes through (DESIGN 4)."""
+    """Cells (offsets from V) that the segment from V to V + (dr, dc) passes through (ARCHITECTURE §4)."""
     sr, sc = _sign(dr), _sign(dc)
     if abs(dr) + abs(dc) == 1:
         return ()

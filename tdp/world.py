@@ -1,4 +1,4 @@
-"""Grid-level dynamic world: box obstacles that move, appear and vanish, and a moving target (DESIGN 6)."""
+"""Grid-level dynamic world: box obstacles that move, appear and vanish, and a moving target (ARCHITECTURE §6)."""
 from __future__ import annotations
 
 import math

@@ -1,4 +1,4 @@
-"""Independent reference: the grid graph built straight from DESIGN 4's text, solved by scipy's Dijkstra.
+"""Independent reference: the grid graph built straight from ARCHITECTURE §4's text, solved by scipy's Dijkstra.
 
 Deliberately shares no code with tdp: the offsets, weights and corner rule are written out again here.
 """

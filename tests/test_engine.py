@@ -196,7 +196,7 @@ def test_converge_cut_short_by_max_rounds_leaves_iterations_to_finish_the_job(mo
 def test_iteration_numbers_rebase_without_changing_anything(monkeypatch):
     """Tile stamps are renumbered before they could overflow 32 bits; with a tiny rebase point the tiled engine
     still equals dense iterations through edits and goal moves."""
-    monkeypatch.setattr(engine_module, "_REBASE", 5)
+    monkeypatch.setattr(engine_module, "REBASE_AT", 5)
     rng = np.random.default_rng(11)
     occupied = random_map(30, 33, 0.15, 11)
     nodes = np.argwhere(~occupied)[::41]

@@ -1,4 +1,4 @@
-"""The accelerating-nodes planner end to end at grid level (paper sections 3.3-5.1, DESIGN 5-6)."""
+"""The accelerating-nodes planner end to end at grid level (paper sections 3.3-5.1, ARCHITECTURE §5-6)."""
 import itertools
 import math
 
@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 import tdp
 from tdp.blockage import BlockageMonitor, crossing_blocked, segment_near_path
-from tdp.nodes import NodeGraph, place_nodes
+from tdp.nodes import NodeGraph, choose_subgoal, place_nodes
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 
@@ -128,19 +128,17 @@ def graph_from(robot_readings, goal_readings, pairs, robot_goal=np.inf, vision=1
 
 
 def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
-    navigator = tdp.Navigator(tdp.GridMap(np.zeros((10, 10), bool)), (0, 0), (9, 9), tdp.NavigatorConfig(spacing=4.0))
-    assert navigator.vision == 10.0
-    pairs = np.array([[0, 4, 10], [4, 0, 4], [10, 4, 0]], float)
+    pairs = np.array([[0, 4, 10], [4, 0, 4], [10, 4, 0]], float)  # DmaxQ = 10
     graph = graph_from([3, 6, 10], [10, 10, 2], pairs)
-    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 1      # Q2, within sight (6 < 10)
+    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 1      # Q2, within sight (6 < 10)
     graph = graph_from([3, 12, 10], [10, 10, 2], pairs)
-    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 0      # Q2 out of sight: Q1
-    assert navigator._choose_subgoal([3, 2, 4], graph) == 2            # R, Q1, G with G out of sight: Q1
-    assert navigator._choose_subgoal([3, 4], graph) == 4               # R, G: the last point
+    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 0      # Q2 out of sight: Q1
+    assert choose_subgoal([3, 2, 4], graph) == 2            # R, Q1, G with G out of sight: Q1
+    assert choose_subgoal([3, 4], graph) == 4               # R, G: the last point
     near_goal = graph_from([3, 12, 10], [10, 10, 2], pairs, robot_goal=7.0)
-    assert navigator._choose_subgoal([3, 2, 4], near_goal) == 4        # R, Q1, G with G in sight: G
+    assert choose_subgoal([3, 2, 4], near_goal) == 4        # R, Q1, G with G in sight: G
     graph = graph_from([0, 6, 8], [10, 10, 2], pairs)
-    assert navigator._choose_subgoal([3, 0, 1, 2, 4], graph) == 2      # standing on Q1: skip it
+    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 2      # standing on Q1: skip it
 
 
 def test_monitor_flags_a_rise_of_u_but_not_a_small_change():
