@@ -10,7 +10,6 @@ import time
 from pathlib import Path
 from typing import Callable
 
-import numpy as np
 
 RESULTS = Path(__file__).parent / "results"
 
@@ -92,6 +91,7 @@ def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[t
     ``route``, the way it would have gone without the blockage); the closest approach to the blocking box (cells)
     after the change; planner time per tick (ms: median, mean, p95, max; map update, DP, monitor and search
     together)."""
+    from tdp.contract import timing_summary
     from tdp.world import box_distance
 
     box = scenario.obstacles[scenario.blocking]
@@ -101,9 +101,7 @@ def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[t
     trajectory = record["trajectory"]
     turn = next((t for t in range(scenario.change_tick, len(trajectory))
                  if t >= len(route) or trajectory[t] != route[t]), len(trajectory))
-    per_tick = np.array([sum(r.timings.values()) for r in record["results"]]) * 1e3
+    per_tick = timing_summary([sum(r.timings.values()) for r in record["results"]])
     return {"reached": record["reached"], "ticks": record["ticks"], "length": record["length"],
             "ratio": record["length"] / oracle_length, "turn_after": turn - scenario.change_tick,
-            "closest": closest, "ms_median": float(np.median(per_tick)), "ms_mean": float(per_tick.mean()),
-            "ms_p95": float(np.percentile(per_tick, 95)),
-            "ms_max": float(per_tick.max())}
+            "closest": closest, **{f"ms_{name}": value for name, value in per_tick.items()}}

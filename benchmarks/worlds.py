@@ -26,6 +26,7 @@ import tdp
 from benchmarks.baselines.dstar_lite import DStarLite
 from benchmarks.common import machine, print_table, quick_parser, write_json
 from benchmarks.reference_graph import grid_graph
+from tdp.contract import timing_summary
 from tdp.random_worlds import CUTTING, FAMILIES, make_world
 from tdp.simulate import oracle_run, run_planner
 
@@ -107,11 +108,11 @@ def run_world(family: str, size: int, seed: int, dstar: bool, options: dict | No
 
 
 def _metrics(record: dict, oracle_length: float) -> dict:
-    per_tick = [sum(r.timings.values()) * 1e3 for r in record["results"]] or [0.0]
+    per_tick = timing_summary([sum(r.timings.values()) for r in record["results"]])
     return {"reached": bool(record["reached"]), "ticks": record["ticks"], "length": record["length"],
             "ratio": record["length"] / oracle_length if record["reached"] and oracle_length > 0 else math.nan,
             "collisions": record["collisions"], "hits": record["hits"],
-            "waits": sum(mode == "wait" for mode in record["modes"]), "ms_median": float(np.median(per_tick))}
+            "waits": sum(mode == "wait" for mode in record["modes"]), "ms_median": per_tick["median"]}
 
 
 def _detections(scenario: tdp.Scenario, record: dict, navigator: tdp.Navigator, config) -> dict:

@@ -11,6 +11,7 @@ import numpy as np
 import pybullet as p
 
 import tdp
+from tdp.contract import TickResult, WorldFeed, landmarks, timing_summary
 from tdp.simulate import oracle_run
 
 from .control import PurePursuit
@@ -78,55 +79,48 @@ class _Run:
         self.world = SimWorld(client, scenario, sim.cell_m, sim.tick_s)
         self.grid = self.world.grid
         self.static = scenario.grid.inflate(sim.inflate_m / sim.cell_m).occupied
-        self.mask = self.static | self.world.moving_footprints(sim.inflate_m, 0.0, sim.horizon_s)
+        mask = self.static | self.world.moving_footprints(sim.inflate_m, 0.0, sim.horizon_s)
         for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
-            if self.mask[cell]:
+            if mask[cell]:
                 raise ValueError(f"{name} {cell} is within {sim.inflate_m} m of an obstacle: no room for the robot")
-        self.navigator = tdp.Navigator(tdp.GridMap(self.mask), scenario.start, scenario.goal, config)
+        self.navigator = tdp.Navigator(tdp.GridMap(mask), scenario.start, scenario.goal, config)
+        self.feed = WorldFeed(mask, scenario.goal)
         self.navigator.setup()
         x, y = self.grid.cell_to_world(*scenario.start)
         gx, gy = self.grid.cell_to_world(*scenario.goal)
         self.robot = DiffDriveRobot(client, x, y, math.atan2(gy - y, gx - x))
         self.controller = PurePursuit(max_v=sim.max_speed)
-        self.target = scenario.goal
         self.trace: list[tuple[float, float, str]] = [(x, y, "dp")]
         self.length_m = 0.0
         self.contact_steps = 0
         self.min_clearance = math.inf
         self.planner_s: list[float] = []
-        self.detections: list[dict] = []
-        self.modes: list[str] = []
-        self.turn_point = self.switch_back_point = None
+        self.results: list[TickResult] = []
 
     def robot_cell(self) -> tuple[int, int]:
         x, y, _ = self.robot.pose()
         r, c = self.grid.world_to_cell(x, y)
         return min(max(r, 0), self.grid.shape[0] - 1), min(max(c, 0), self.grid.shape[1] - 1)
 
-    def plan(self, tick: int) -> tdp.navigator.TickResult:
-        """Rasterise, send the changed cells, move the target, run the planner's tick."""
+    def plan(self, tick: int) -> TickResult:
+        """Rasterise, send the changed cells and the target's move, run the planner's tick."""
         now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.sim.tick_s,
                                                          self.sim.horizon_s)
-        changed = np.argwhere(now != self.mask)
-        if len(changed):
-            self.navigator.update_map(changed, now[tuple(changed.T)])
-        self.mask = now
-        target = self.scenario.target(tick)
-        if target != self.target:
-            self.target = target
-            self.navigator.set_goal(target)
+        self.feed.update(self.navigator, now, self.scenario.target(tick))
         self.navigator.move_robot(self.robot_cell())
         began = time.perf_counter()
         result = self.navigator.tick()
         self.planner_s.append(time.perf_counter() - began)
-        for d in result.detections:
-            self.detections.append({"tick": tick, "iteration": d.iteration, "pair": list(d.pair),
-                                    "relevant": d.relevant})
-            if d.relevant and self.turn_point is None:
-                self.turn_point = self.robot.pose()[:2]
-        if result.switched_back and self.switch_back_point is None:
-            self.switch_back_point = self.robot.pose()[:2]
+        self.results.append(result)
         return result
+
+    def detections(self) -> list[dict]:
+        return [{"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant}
+                for tick, result in enumerate(self.results, start=1) for d in result.detections]
+
+    def landmark_points(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+        """Where the robot was (x, y in metres) when it turned (A) and when it switched back (B)."""
+        return tuple(self.trace[t - 1][:2] if t else None for t in landmarks(self.results))
 
     def drive(self, tick: int, result) -> None:
         """Physics for one tick, steering at control_hz along the planner's route."""
@@ -135,8 +129,8 @@ class _Run:
         escape = self._escape()
         if escape is not None:
             route = [escape]
-        elif not route or self.robot_cell() == self.target:
-            route = [self.grid.cell_to_world(*self.target)]
+        elif not route or self.robot_cell() == self.feed.target:
+            route = [self.grid.cell_to_world(*self.feed.target)]
         steps_per_control = sim.physics_hz // sim.control_hz
         control_dt = 1.0 / sim.control_hz
         steps = round(sim.tick_s * sim.physics_hz)
@@ -156,18 +150,17 @@ class _Run:
             last = now
             self._count_contacts()
         self.trace.append((last[0], last[1], result.mode))
-        self.modes.append(result.mode)
 
     def _escape(self) -> tuple[float, float] | None:
         """Inside the inflated obstacles (a box came too close) the planner has no successor: head for the
         nearest free cell instead of waiting to be hit. None when the robot's cell is free."""
-        if not self.mask[self.robot_cell()]:
+        if not self.feed.occupied[self.robot_cell()]:
             return None
-        if self.mask.all():
+        if self.feed.occupied.all():
             return None
         x, y, _ = self.robot.pose()
         cx, cy = cell_centres(self.grid)
-        distance = np.where(self.mask, np.inf, np.hypot(cx - x, cy - y))
+        distance = np.where(self.feed.occupied, np.inf, np.hypot(cx - x, cy - y))
         nearest = np.unravel_index(np.argmin(distance), distance.shape)
         return float(cx[nearest]), float(cy[nearest])
 
@@ -184,7 +177,7 @@ class _Run:
 
     def reached(self) -> bool:
         x, y, _ = self.robot.pose()
-        gx, gy = self.grid.cell_to_world(*self.target)
+        gx, gy = self.grid.cell_to_world(*self.feed.target)
         return math.hypot(gx - x, gy - y) <= self.sim.goal_tolerance_m
 
 
@@ -212,16 +205,15 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     cells = math.ceil(sim.inflate_m / sim.cell_m)
     oracle = oracle_run(inflated_scenario(scenario, cells), config, max_ticks)
     oracle_m = oracle["length"] * sim.cell_m
-    planner_ms = np.array(run.planner_s) * 1e3 if run.planner_s else np.zeros(1)
+    turn_point, switch_back_point = run.landmark_points()
     return {
         "scenario": scenario.name, "accelerating": config.accelerating, "updates_per_move": config.updates_per_move,
         "reached": reached, "time_s": tick * sim.tick_s, "wall_s": wall_s, "ticks": tick,
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
         "ratio": run.length_m / oracle_m if oracle_m > 0 else 1.0, "contacts": run.contact_steps,
-        "min_clearance_m": run.min_clearance, "detections": run.detections,
-        "planner_ms_per_tick": {"median": float(np.median(planner_ms)), "mean": float(planner_ms.mean()),
-                                "p95": float(np.percentile(planner_ms, 95)), "max": float(planner_ms.max())},
-        "trace": run.trace, "modes": run.modes, "nodes": run.navigator.nodes.tolist(),
-        "turn_point": run.turn_point, "switch_back_point": run.switch_back_point,
+        "min_clearance_m": run.min_clearance, "detections": run.detections(),
+        "planner_ms_per_tick": timing_summary(run.planner_s),
+        "trace": run.trace, "modes": [result.mode for result in run.results], "nodes": run.navigator.nodes.tolist(),
+        "turn_point": turn_point, "switch_back_point": switch_back_point,
         "oracle_trajectory": oracle["trajectory"], "sim": asdict(sim), "config": config.to_dict(),
     }

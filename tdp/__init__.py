@@ -2,13 +2,14 @@
 
 Kala, Shukla and Tiwari (2012), "Robot Path Planning using Dynamic Programming with Accelerating Nodes".
 """
-from . import scenarios
+from . import random_worlds, scenarios
+from .contract import Mode, Planner, TickResult
 from .field import DistanceField
 from .grid import GridMap, Problem, load_map, load_scenarios
 from .navigator import Navigator, NavigatorConfig
 from .simulate import Episode, simulate
 from .world import Obstacle, Scenario
 
-__all__ = ["DistanceField", "Episode", "GridMap", "Navigator", "NavigatorConfig", "Obstacle", "Problem", "Scenario",
-           "load_map", "load_scenarios", "scenarios", "simulate"]
+__all__ = ["DistanceField", "Episode", "GridMap", "Mode", "Navigator", "NavigatorConfig", "Obstacle", "Planner",
+           "Problem", "Scenario", "TickResult", "load_map", "load_scenarios", "random_worlds", "scenarios", "simulate"]
 __version__ = "0.1.0"

@@ -8,12 +8,13 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from . import checks
 from .blockage import BlockageMonitor, crossing_blocked, segment_near_path
+from .contract import Detection, Mode, TickResult
 from .engine import Engine
 from .field import cells_from, check_cap
 from .grid import GridMap
@@ -106,29 +107,6 @@ class NavigatorConfig:
         return asdict(self)
 
 
-@dataclass
-class Detection:
-    """A pair of nodes found blocked at DP iteration ``iteration``; ``relevant`` if near the robot's path."""
-
-    iteration: int
-    pair: tuple[int, int]
-    relevant: bool
-
-
-@dataclass
-class TickResult:
-    """What one tick decided: the mode, the cell to move to (None: stay), and what happened on the way."""
-
-    mode: str
-    next_cell: tuple[int, int] | None
-    detections: list[Detection] = field(default_factory=list)
-    backup_path: list[int] | None = None
-    backup_cost: float | None = None
-    subgoal: int | None = None
-    switched_back: bool = False
-    timings: dict = field(default_factory=dict)
-
-
 class Navigator:
     """Plans a robot's moves on a changing grid with the DP and, optionally, accelerating nodes.
 
@@ -216,7 +194,7 @@ class Navigator:
         """
         new_pairs, dp_s, monitor_s = self._iterate()
         began = time.perf_counter()
-        result = TickResult(mode=self.state, next_cell=None, detections=self._classify(new_pairs))
+        result = TickResult(mode=Mode.DP, next_cell=None, detections=self._classify(new_pairs))
         monitor_s += time.perf_counter() - began
 
         began = time.perf_counter()
@@ -230,7 +208,7 @@ class Navigator:
             result.next_cell = self._next_cell()
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
-        result.mode = ("backup" if self.state == "backup" else "dp") if moving else "wait"
+        result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
         result.subgoal = self._subgoal if self.state == "backup" else None
         result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
         return result

@@ -11,7 +11,8 @@ import numpy as np
 from . import checks
 from .field import DistanceField
 from .grid import GridMap
-from .navigator import Navigator, NavigatorConfig, TickResult
+from .contract import Mode, Planner, TickResult, WorldFeed, landmarks, timing_summary
+from .navigator import Navigator, NavigatorConfig
 from .stencil import moves
 from .world import Scenario, box_distance
 
@@ -67,7 +68,7 @@ class _Oracle:
     def tick(self) -> TickResult:
         began = time.perf_counter()
         self.field.converge()
-        result = TickResult(mode="oracle", next_cell=self.field.successor(self.robot))
+        result = TickResult(mode=Mode.ORACLE, next_cell=self.field.successor(self.robot))
         result.timings = {"converge": time.perf_counter() - began}
         return result
 
@@ -84,41 +85,28 @@ def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
     return all(not occupied[here[0] + dr, here[1] + dc] for dr, dc in move.crossed)
 
 
-def _summary(samples: list[float]) -> dict:
-    values = np.array(samples) * 1e3 if samples else np.zeros(1)
-    return {"median": float(np.median(values)), "mean": float(values.mean()),
-            "p95": float(np.percentile(values, 95)), "max": float(values.max())}
+def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
+    """Drive ``planner`` (any :class:`~tdp.contract.Planner`: a :class:`~tdp.navigator.Navigator`, the oracle, or a
+    baseline such as the benchmarks' D* Lite) through the scenario, tick by tick; returns the raw record
+    (trajectory, modes, length in cells, collisions, hits, ticks, reached, the planner's TickResults, the target's
+    path).
 
-
-def run_planner(scenario: Scenario, planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
-    """Drive ``planner`` through the scenario, tick by tick; returns the raw record (trajectory, modes, length in
-    cells, collisions, hits, ticks, reached, the planner's TickResults, the target's path).
-
-    A planner has ``update_map(cells, occupied)``, ``set_goal(cell)``, ``move_robot(cell)`` and ``tick()``
-    returning a :class:`~tdp.navigator.TickResult` (a :class:`~tdp.navigator.Navigator`, the oracle, or a
-    baseline such as the benchmarks' D* Lite). ``config`` gives the stencil the moves are checked against. Each
-    TickResult's ``timings["update"]`` is the time spent handing the tick's map and goal changes to the planner.
+    ``config`` gives the stencil the moves are checked against. Each TickResult's ``timings["update"]`` is the time
+    spent handing the tick's map and goal changes to the planner.
     """
     table = _allowed_moves(config)
-    occupied = scenario.occupancy(0)
     robot, target = scenario.start, scenario.goal
+    feed = WorldFeed(scenario.occupancy(0), target)
     record = {"trajectory": [robot], "modes": [], "length": 0.0, "collisions": 0, "hits": 0, "ticks": 0,
               "reached": robot == target, "results": [], "target_path": [target]}
     for tick in range(1, max_ticks + 1):
         if record["reached"]:
             break
         began = time.perf_counter()
-        now = scenario.occupancy(tick)
-        changed = np.argwhere(now != occupied)
-        if len(changed):
-            planner.update_map(changed, now[changed[:, 0], changed[:, 1]])
-        occupied = now
-        record["hits"] += int(occupied[robot])
-        new_target = scenario.target(tick)
-        if new_target != target:
-            target = new_target
-            planner.set_goal(target)
+        occupied, target = scenario.occupancy(tick), scenario.target(tick)
+        if feed.update(planner, occupied, target):
             record["target_path"].append(target)
+        record["hits"] += int(occupied[robot])
         update_s = time.perf_counter() - began
         result = planner.tick()
         result.timings["update"] = update_s
@@ -184,7 +172,7 @@ def _start_grid(scenario: Scenario) -> GridMap:
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
     results = record["results"]
-    detections, turn, back = [], None, None
+    detections = []
     for tick, result in enumerate(results, start=1):
         for d in result.detections:
             delay = None
@@ -192,10 +180,9 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
                 delay = d.iteration - scenario.change_tick * config.updates_per_move
             detections.append({"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant,
                                "delay_iterations": delay, "robot": list(record["trajectory"][tick - 1])})
-            if d.relevant and turn is None:
-                turn = record["trajectory"][tick - 1]
-        if result.switched_back and back is None:
-            back = record["trajectory"][tick]
+    turn_tick, back_tick = landmarks(results)
+    turn = record["trajectory"][turn_tick - 1] if turn_tick else None
+    back = record["trajectory"][back_tick] if back_tick else None
     closest = None
     if scenario.blocking is not None:
         obstacle = scenario.obstacles[scenario.blocking]
@@ -203,8 +190,9 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
                      if obstacle.present(tick)]
         closest = min(distances) if distances else None
     ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
-    timings = {name: _summary([r.timings[name] for r in results]) for name in ("update", "dp", "monitor", "search")}
-    timings["total"] = _summary([sum(r.timings.values()) for r in results])
+    timings = {name: timing_summary([r.timings[name] for r in results])
+               for name in ("update", "dp", "monitor", "search")}
+    timings["total"] = timing_summary([sum(r.timings.values()) for r in results])
     return Episode(
         scenario=scenario.name, config=config.to_dict(), reached=record["reached"], ticks=record["ticks"],
         length=record["length"], oracle_length=oracle_record["length"], ratio=ratio,

@@ -220,3 +220,54 @@ def test_bad_queries_and_edits_raise_clear_errors():
         field.step(-1)
     with pytest.raises(ValueError, match="GridMap"):
         tdp.DistanceField(occupied, (0, 0))
+
+
+S2, S5 = math.sqrt(2), math.sqrt(5)
+INF = math.inf
+
+
+def test_literal_open_5x5_with_16_neighbours():
+    """Distances to the top-left corner, written out by hand: straight 1, diagonal sqrt 2, knight sqrt 5."""
+    expected = [
+        [0, 1, 2, 3, 4],
+        [1, S2, S5, 1 + S5, 2 + S5],
+        [2, S5, 2 * S2, S2 + S5, 2 * S5],
+        [3, 1 + S5, S2 + S5, 3 * S2, 2 * S2 + S5],
+        [4, 2 + S5, 2 * S5, 2 * S2 + S5, 4 * S2],
+    ]
+    field = field_on(np.zeros((5, 5), bool), (0, 0))
+    field.converge()
+    np.testing.assert_allclose(field.distances(), expected, rtol=1e-6)
+
+
+def test_literal_wall_with_a_gap_and_4_neighbours():
+    """A wall down column 2 with a gap at the bottom: the right half goes round through (4, 2)."""
+    occupied = np.zeros((5, 5), bool)
+    occupied[0:4, 2] = True
+    expected = [
+        [0, 1, INF, 11, 12],
+        [1, 2, INF, 10, 11],
+        [2, 3, INF, 9, 10],
+        [3, 4, INF, 8, 9],
+        [4, 5, 6, 7, 8],
+    ]
+    field = field_on(occupied, (0, 0), neighbourhood=4)
+    field.converge()
+    np.testing.assert_array_equal(field.distances(), np.array(expected, np.float32))
+    # Ties go to the first move in the order up, right, down, left.
+    assert field.path((0, 4)) == [(0, 4), (1, 4), (2, 4), (3, 4), (4, 4), (4, 3), (4, 2), (4, 1), (3, 1), (2, 1),
+                                  (1, 1), (0, 1), (0, 0)]
+
+
+def test_literal_two_synchronous_iterations():
+    """Eq. 5 from the initial state: after two iterations only cells within two moves are finite."""
+    field = field_on(np.zeros((5, 5), bool), (2, 2), neighbourhood=4)
+    field.step(2)
+    expected = [
+        [INF, INF, 2, INF, INF],
+        [INF, 2, 1, 2, INF],
+        [2, 1, 0, 1, 2],
+        [INF, 2, 1, 2, INF],
+        [INF, INF, 2, INF, INF],
+    ]
+    np.testing.assert_array_equal(field.distances(), np.array(expected, np.float32))

@@ -14,13 +14,13 @@ import time
 import numpy as np
 
 from tdp import stencil
-from tdp.navigator import TickResult
+from tdp.contract import Mode, TickResult
 
 INF = math.inf
 
 
 class DStarLite:
-    """A planner with the interface of :func:`tdp.simulate.run_planner`: update_map, set_goal, move_robot, tick."""
+    """A :class:`tdp.contract.Planner`: update_map, set_goal, move_robot, tick."""
 
     def __init__(self, occupied: np.ndarray, start: tuple[int, int], goal: tuple[int, int], neighbourhood: int = 16,
                  corner_cutting: bool = False):
@@ -137,6 +137,6 @@ class DStarLite:
                 best, target = value, nb
         if self.start == self.goal:
             target = None
-        result = TickResult(mode="d*lite" if target else "wait", next_cell=target)
+        result = TickResult(mode=Mode.DSTAR if target else Mode.WAIT, next_cell=target)
         result.timings = {"search": time.perf_counter() - began}
         return result

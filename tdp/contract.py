@@ -1,0 +1,108 @@
+"""The planner contract: what every planner (the navigator, the oracle, D* Lite) offers a runner (the grid runner,
+PyBullet), what one tick returns, and how its timings are summarised.
+
+A runner, each tick: hands the planner the cells whose occupancy changed (:meth:`Planner.update_map`) and the
+target's new cell if it moved (:meth:`Planner.set_goal`), tells it where the robot is (:meth:`Planner.move_robot`),
+then asks :meth:`Planner.tick` where to go. :class:`WorldFeed` does the first two for any source of occupancy.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Protocol, Sequence
+
+import numpy as np
+
+
+class Mode(str, Enum):
+    """What the robot did on a tick: followed the goal layer (``DP``), a backup subgoal's layer (``BACKUP``), the
+    exact field (``ORACLE``), D* Lite's search (``DSTAR``), or stayed where it was (``WAIT``). Modes compare equal to
+    their strings ("dp", "backup", ...) and are written as those strings."""
+
+    DP = "dp"
+    BACKUP = "backup"
+    WAIT = "wait"
+    ORACLE = "oracle"
+    DSTAR = "d*lite"
+
+    __hash__ = str.__hash__  # hash as the string, so that a dict keyed by "dp" finds Mode.DP
+
+    def __str__(self) -> str:
+        return self.value
+
+
+@dataclass
+class Detection:
+    """A pair of nodes found blocked at DP iteration ``iteration``; ``relevant`` if near the robot's path."""
+
+    iteration: int
+    pair: tuple[int, int]
+    relevant: bool
+
+
+@dataclass
+class TickResult:
+    """What one tick decided: the mode, the cell to move to (None: stay), and what happened on the way. ``timings``
+    maps a phase ("dp", "monitor", "search", "converge", ...) to the seconds it took."""
+
+    mode: Mode
+    next_cell: tuple[int, int] | None
+    detections: list[Detection] = field(default_factory=list)
+    backup_path: list[int] | None = None
+    backup_cost: float | None = None
+    subgoal: int | None = None
+    switched_back: bool = False
+    timings: dict = field(default_factory=dict)
+
+
+class Planner(Protocol):
+    """A planner a runner can drive (:func:`tdp.simulate.run_planner`, ``sim``)."""
+
+    def update_map(self, cells: np.ndarray, occupied: np.ndarray) -> None:
+        """Cells (n, 2) whose occupancy changed, and their new state (bool per cell)."""
+
+    def set_goal(self, cell: tuple[int, int]) -> None:
+        """The target moved to ``cell``."""
+
+    def move_robot(self, cell: tuple[int, int]) -> None:
+        """The robot is now at ``cell``."""
+
+    def tick(self) -> TickResult:
+        """Plan; say where to go."""
+
+
+def timing_summary(seconds: Sequence[float]) -> dict:
+    """Median, mean, 95th percentile and maximum of ``seconds``, in milliseconds (zeros for no sample)."""
+    values = np.asarray(seconds, np.float64) * 1e3 if len(seconds) else np.zeros(1)
+    return {"median": float(np.median(values)), "mean": float(values.mean()),
+            "p95": float(np.percentile(values, 95)), "max": float(values.max())}
+
+
+def landmarks(results: Sequence[TickResult]) -> tuple[int | None, int | None]:
+    """The ticks (1-based) of the first relevant blockage detection (the turn point A of the paper's figures) and
+    of the first switch back to the DP (B); None where there is none."""
+    turn = next((t for t, r in enumerate(results, start=1) if any(d.relevant for d in r.detections)), None)
+    back = next((t for t, r in enumerate(results, start=1) if r.switched_back), None)
+    return turn, back
+
+
+class WorldFeed:
+    """Hands a planner what changed in its world since the last tick: the cells whose occupancy flipped (only
+    those) and the target's moves."""
+
+    def __init__(self, occupied: np.ndarray, target: tuple[int, int]):
+        self.occupied = np.array(occupied, bool)
+        self.target = tuple(target)
+
+    def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int]) -> bool:
+        """Send ``planner`` the changes from the last state to ``occupied`` and ``target``; return whether the
+        target moved."""
+        changed = np.argwhere(occupied != self.occupied)
+        if len(changed):
+            planner.update_map(changed, occupied[changed[:, 0], changed[:, 1]])
+        self.occupied = np.array(occupied, bool)
+        moved = tuple(target) != self.target
+        if moved:
+            self.target = tuple(target)
+            planner.set_goal(self.target)
+        return moved
