@@ -119,8 +119,8 @@ def _detections(scenario: tdp.Scenario, record: dict, navigator: tdp.Navigator, 
     found = [(tick, d.pair) for tick, result in enumerate(record["results"], start=1) for d in result.detections]
     if not found:
         return {"detections": 0, "justified": 0}
-    truth = PairTruth(scenario, navigator.nodes, navigator.vision + config.rise + 1)
-    lookback = math.ceil((config.detect_window + navigator.vision) / config.updates_per_move) + 1
+    truth = PairTruth(scenario, navigator.nodes, navigator.dmax_q + config.rise + 1)
+    lookback = math.ceil((config.detect_window + navigator.dmax_q) / config.updates_per_move) + 1
     justified = sum(truth.justified(tick, pair, lookback, config.rise) for tick, pair in found)
     return {"detections": len(found), "justified": justified}
 

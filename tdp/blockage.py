@@ -9,7 +9,7 @@ import numpy as np
 class BlockageMonitor:
     """Watches the node-pair distances D(a, b, i) iteration by iteration.
 
-    A pair (a, b) connected J iterations ago (D < DmaxQ, ``vision``) is blocked at iteration i when
+    A pair (a, b) connected J iterations ago (D < DmaxQ, ``dmax_q`` in cells) is blocked at iteration i when
     ``D(a, b, i) - D(a, b, i - J) >= rise`` (U, over ``window`` J iterations) while both its nodes were active
     (finite readings) at every one of those iterations. The node layers read up to DmaxQ + U (their cap; edges of
     the graph still need D < DmaxQ), so a pair that loses its connection always shows a rise of at least U, while a
@@ -20,8 +20,8 @@ class BlockageMonitor:
     again, so covering and uncovering alone never look like a blockage.
     """
 
-    def __init__(self, vision: float, window: int = 8, rise: float = 7.0):
-        self.vision = float(vision)
+    def __init__(self, dmax_q: float, window: int = 8, rise: float = 7.0):
+        self.dmax_q = float(dmax_q)
         self.window = int(window)
         self.rise = float(rise)
         self._history: deque[np.ndarray] = deque(maxlen=self.window + 1)
@@ -42,7 +42,7 @@ class BlockageMonitor:
         if len(self._history) <= self.window:
             return []
         before = self._history[0]
-        watched = np.isfinite(np.stack(self._history)).all(axis=0) & (before < self.vision)
+        watched = np.isfinite(np.stack(self._history)).all(axis=0) & (before < self.dmax_q)
         rise = np.subtract(pairs, before, out=np.zeros_like(pairs), where=watched)
         blocked = watched & (rise >= self.rise)
         fresh = blocked & ~self._blocked

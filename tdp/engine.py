@@ -706,7 +706,7 @@ class Engine:
                 self.iterations += k
                 return
             chunk = min(k, _CHUNK)
-            self._iterate(chunk, nowhere)
+            self._advance(chunk, nowhere)
             k -= chunk
 
     def changed(self) -> int:
@@ -779,9 +779,9 @@ class Engine:
         """Run k synchronous iterations of every layer and return every layer at ``cells`` after each: a float32
         (k, n, 1 + nodes) array (as :meth:`sample` after each :meth:`step`), in one kernel launch per kind of
         layer while few tiles are active."""
-        return self._iterate(k, _cells_array(cells))
+        return self._advance(k, _cells_array(cells))
 
-    def _iterate(self, k: int, cells: np.ndarray) -> np.ndarray:
+    def _advance(self, k: int, cells: np.ndarray) -> np.ndarray:
         out = np.empty((k, len(cells), 1 + len(self.nodes)), np.float32)
         for layers, sr, sc, cap in self._kinds():
             layers.rebase()

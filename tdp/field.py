@@ -77,15 +77,15 @@ class DistanceField:
         self._engine.step(k)
         return self._engine.changed() if k else 0
 
-    def converge(self, max_iters: int | None = None) -> int:
+    def converge(self, max_rounds: int | None = None) -> int:
         """Relax to the exact fixed point (the setup phase); return the number of rounds it took.
 
         Starts again from the initial state and settles 8 x 8 tiles in place, each sweeping in cache until stable
         and waking the neighbours its border changes reach, until no tile changes (ARCHITECTURE §7); the
-        result equals synchronous iteration to convergence exactly. ``max_iters`` bounds the rounds.
+        result equals synchronous iteration to convergence exactly. ``max_rounds`` bounds the rounds.
         """
-        max_iters = checks.optional_integer(max_iters, "max_iters", 1)
-        return self._engine.converge(max_iters)
+        max_rounds = checks.optional_integer(max_rounds, "max_rounds", 1)
+        return self._engine.converge(max_rounds)
 
     def distances(self) -> np.ndarray:
         """float32 (H, W) distances in cells: inf (or ``d_max``) where the goal is not reached."""

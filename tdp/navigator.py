@@ -131,11 +131,11 @@ class Navigator:
             self.nodes, self.spacing = lattice.cells, lattice.spacing
         else:
             self.nodes, self.spacing = np.zeros((0, 2), np.int32), 0.0
-        self.vision = config.vision * self.spacing
+        self.dmax_q = config.vision * self.spacing  # DmaxQ, in cells
         self.engine = Engine(grid.occupied, goal, goal_cap=config.d_max, nodes=self.nodes,
-                             node_cap=self.vision + config.rise, neighbourhood=config.neighbourhood,
+                             node_cap=self.dmax_q + config.rise, neighbourhood=config.neighbourhood,
                              corner_cutting=config.corner_cutting)
-        self.monitor = BlockageMonitor(self.vision, config.detect_window, config.rise)
+        self.monitor = BlockageMonitor(self.dmax_q, config.detect_window, config.rise)
         # What the robot follows: "dp" (S(., G)), "backup" (S(., subgoal)), or "no-route": S(., G) while the last
         # search found no route in the node graph, searching again every tick.
         self.state = "dp"
@@ -146,7 +146,7 @@ class Navigator:
         # Iteration from which each node is active: inf while covered, and after it is uncovered, long enough for
         # its layer to settle (phantom values rise at least a cell per iteration, true ones arrive within DmaxQ).
         self._active_from = np.zeros(len(self.nodes))
-        self._settling = math.ceil(self.vision + config.rise) + 1
+        self._settling = math.ceil(self.dmax_q + config.rise) + 1
         self._readings: np.ndarray | None = None  # every layer at the graph cells, as of the last iteration
 
     # -- inputs ------------------------------------------------------------------------------------------------
@@ -192,7 +192,7 @@ class Navigator:
         the goal layer when the node graph has no route (the search is retried every tick) and waits only when
         neither offers a move (ARCHITECTURE §5.5).
         """
-        new_pairs, dp_s, monitor_s = self._iterate()
+        new_pairs, dp_s, monitor_s = self._run_iterations()
         began = time.perf_counter()
         result = TickResult(mode=Mode.DP, next_cell=None, detections=self._classify(new_pairs))
         monitor_s += time.perf_counter() - began
@@ -213,7 +213,7 @@ class Navigator:
         result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
         return result
 
-    def _iterate(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
+    def _run_iterations(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
         """K DP iterations; with nodes, the monitor observes the pair distances after each (the engine samples
         them as it iterates). Returns the newly blocked pairs with their iteration, and the seconds spent
         in DP and monitor."""
@@ -230,7 +230,7 @@ class Navigator:
         new_pairs = []
         for step, sample in enumerate(samples):
             iteration = self.engine.iterations - k + step + 1
-            pairs = NodeGraph(sample, self.vision, self._active_nodes(iteration)).pairs
+            pairs = NodeGraph(sample, self.dmax_q, self._active_nodes(iteration)).pairs
             new_pairs += [(iteration, pair) for pair in self.monitor.observe(pairs)]
         return new_pairs, dp_s, time.perf_counter() - began
 
@@ -251,7 +251,7 @@ class Navigator:
         unreliable = None
         if without_blocked and self.monitor.blocked is not None:
             unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
-        return NodeGraph(self._readings, self.vision, self._active_nodes(), unreliable)
+        return NodeGraph(self._readings, self.dmax_q, self._active_nodes(), unreliable)
 
     def node_edges(self) -> list[tuple[int, int]]:
         """The node pairs (a < b) connected in the node graph now (eq. 14), e.g. for a figure."""
@@ -261,7 +261,7 @@ class Navigator:
 
     def current_path(self) -> list[tuple[int, int]]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
-        limit = max(1, int(4 * self.vision)) if self.config.accelerating else self.grid.shape[0] * self.grid.shape[1]
+        limit = max(1, int(4 * self.dmax_q)) if self.config.accelerating else self.grid.shape[0] * self.grid.shape[1]
         return [self.robot] + self.engine.trace(0, self.robot, limit)
 
     def _classify(self, new_pairs) -> list[Detection]:
@@ -284,7 +284,7 @@ class Navigator:
             if self._since_detection >= self._path_cost:
                 self.state, self._subgoal = "dp", None
                 result.switched_back = True
-            elif self._layer_at_robot(self._subgoal) < self.vision / 2:
+            elif self._layer_at_robot(self._subgoal) < self.dmax_q / 2:
                 self._search(result, keep_count=True)
         elif self.state == "no-route":
             self._search(result, keep_count=False)

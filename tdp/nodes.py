@@ -97,10 +97,10 @@ class NodeGraph:
     the cut, and the news has not reached R yet.
     """
 
-    def __init__(self, samples: np.ndarray, vision: float, active: np.ndarray, blocked: np.ndarray | None = None):
+    def __init__(self, samples: np.ndarray, dmax_q: float, active: np.ndarray, blocked: np.ndarray | None = None):
         n = samples.shape[0] - 2
         self.n = n
-        self.vision = float(vision)
+        self.dmax_q = float(dmax_q)
         self.active = np.asarray(active, bool)
         node_rows = samples[:n, 1:].astype(np.float64)
         self.pairs = np.maximum(node_rows, node_rows.T)
@@ -145,7 +145,7 @@ class NodeGraph:
     def neighbours(self, vertex: int):
         """(neighbour, weight) pairs of ``vertex`` over the edges with weight < DmaxQ."""
         weights = self._weights(vertex)
-        for other in np.flatnonzero(weights < self.vision):
+        for other in np.flatnonzero(weights < self.dmax_q):
             yield int(other), float(weights[other])
 
     def at_robot(self, vertex: int) -> float:
@@ -155,11 +155,11 @@ class NodeGraph:
     def weight(self, a: int, b: int) -> float:
         """The weight of edge a-b (vertex ids), inf if there is none."""
         value = float(self._weights(a)[b])
-        return value if value < self.vision else np.inf
+        return value if value < self.dmax_q else np.inf
 
     def edges(self) -> list[tuple[int, int, float]]:
         """Every node-node edge (a < b, weight) of the current graph."""
-        a, b = np.nonzero(np.triu(self.pairs < self.vision, k=1))
+        a, b = np.nonzero(np.triu(self.pairs < self.dmax_q, k=1))
         return [(int(i), int(j), float(self.pairs[i, j])) for i, j in zip(a, b)]
 
 
@@ -171,6 +171,6 @@ def choose_subgoal(path: list[int], graph: NodeGraph) -> int:
     if len(path) > 2 and graph.at_robot(path[1]) == 0:
         path = path[:1] + path[2:]
     index = min(2, len(path) - 1)
-    if index == 2 and graph.at_robot(path[2]) >= graph.vision:
+    if index == 2 and graph.at_robot(path[2]) >= graph.dmax_q:
         index = 1
     return path[index]

@@ -118,13 +118,13 @@ def test_switch_back_after_path_cost_iterations_with_the_papers_rule():
     pytest.fail("never switched back")
 
 
-def graph_from(robot_readings, goal_readings, pairs, robot_goal=np.inf, vision=10.0):
+def graph_from(robot_readings, goal_readings, pairs, robot_goal=np.inf, dmax_q=10.0):
     n = len(robot_readings)
     samples = np.full((n + 2, n + 1), np.inf, np.float32)
     samples[:n, 1:] = pairs
     samples[n, 1:], samples[n + 1, 1:] = robot_readings, goal_readings
     samples[n, 0] = robot_goal
-    return NodeGraph(samples, vision, np.ones(n, bool))
+    return NodeGraph(samples, dmax_q, np.ones(n, bool))
 
 
 def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
@@ -142,7 +142,7 @@ def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
 
 
 def test_monitor_flags_a_rise_of_u_but_not_a_small_change():
-    monitor = BlockageMonitor(vision=20.0, window=8, rise=7.0)
+    monitor = BlockageMonitor(dmax_q=20.0, window=8, rise=7.0)
     found = []
     for i in range(30):
         pairs = np.array([[0.0, 10.0 + max(0, i - 10), 5.0], [0, 0, 12.0 + 0.5 * (i > 15)], [0, 0, 0]])
@@ -154,21 +154,21 @@ def test_monitor_flags_a_rise_of_u_but_not_a_small_change():
 def test_monitor_never_flags_a_pair_that_only_flickers_across_dmaxq():
     """A pair just under DmaxQ pushed over it by a passing box (its reading rises by less than U) is no blockage;
     one that loses its connection reads up to the layer cap DmaxQ + U and is flagged."""
-    monitor = BlockageMonitor(vision=20.0, window=2, rise=7.0)
+    monitor = BlockageMonitor(dmax_q=20.0, window=2, rise=7.0)
     assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (19.0, 19.0, 22.0, 19.0, 22.5, 22.5)] == [[]] * 6
-    monitor = BlockageMonitor(vision=20.0, window=2, rise=7.0)
+    monitor = BlockageMonitor(dmax_q=20.0, window=2, rise=7.0)
     assert [monitor.observe(np.array([[0, d], [d, 0]])) for d in (15.0, 15.0, 27.0)] == [[], [], [(0, 1)]]
 
 
 def test_monitor_restarts_a_pairs_history_after_its_node_was_inactive():
-    monitor = BlockageMonitor(vision=20.0, window=2, rise=3.0)
+    monitor = BlockageMonitor(dmax_q=20.0, window=2, rise=3.0)
     readings = [5.0, np.inf, np.inf, 15.0, 15.0, 15.0, 19.0]  # covered, then back with a stale reading
     found = [monitor.observe(np.array([[0, d], [d, 0]])) for d in readings]
     assert found == [[]] * 6 + [[(0, 1)]]  # only a rise seen while the pair is watched throughout counts
 
 
 def test_monitor_ignores_inactive_nodes():
-    monitor = BlockageMonitor(vision=20.0, window=1, rise=1.0)
+    monitor = BlockageMonitor(dmax_q=20.0, window=1, rise=1.0)
     monitor.observe(np.array([[0, 5.0], [5.0, 0]]))
     assert monitor.observe(np.array([[np.inf, np.inf], [np.inf, np.inf]])) == []
 
