@@ -147,7 +147,9 @@ class Navigator:
         # its layer to settle (phantom values rise at least a cell per iteration, true ones arrive within DmaxQ).
         self._active_from = np.zeros(len(self.nodes))
         self._settling = math.ceil(self.dmax_q + config.rise) + 1
-        self._readings: np.ndarray | None = None  # every layer at the graph cells, as of the last iteration
+        # Every layer at the graph cells, with the state it was read in: (iteration, R, G, edits), values.
+        self._readings: tuple[tuple, np.ndarray] | None = None
+        self._edits = 0  # map edits and setups so far: they change the layers between iterations
 
     # -- inputs ------------------------------------------------------------------------------------------------
     @property
@@ -157,7 +159,7 @@ class Navigator:
     def setup(self) -> int:
         """The setup phase (robot stationary): compile the engine's kernels, converge every layer; returns the
         rounds converging took."""
-        self._readings = None
+        self._edits += 1
         self.engine.warm_up()
         return self.engine.converge()
 
@@ -165,7 +167,7 @@ class Navigator:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         self.engine.set_cells(cells, occupied)
-        self._readings = None
+        self._edits += 1
         covered = self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
         uncovered = ~covered & np.isinf(self._active_from)
         self._active_from[covered] = np.inf
@@ -176,13 +178,11 @@ class Navigator:
         one): while it is, the goal layer has no source, its values rise, and the robot keeps to the last route
         the layer knew until the target is on free ground again."""
         self.engine.set_goal(checks.cell(goal, self.grid.shape, "goal"))
-        self._readings = None
 
     def move_robot(self, cell: tuple[int, int]) -> None:
         """Tell the navigator where the robot is now (a cell inside the map; it may be on an obstacle that drove
         onto it)."""
         self.robot = checks.cell(cell, self.grid.shape, "robot cell")
-        self._readings = None
 
     # -- the tick ----------------------------------------------------------------------------------------------
     def tick(self) -> TickResult:
@@ -224,7 +224,7 @@ class Navigator:
             self.engine.step(k)
             return [], time.perf_counter() - began, 0.0
         samples = self.engine.advance(k, self._graph_cells())
-        self._readings = samples[-1]
+        self._readings = (self._reading_state(), samples[-1])
         dp_s = time.perf_counter() - began
         began = time.perf_counter()
         new_pairs = []
@@ -246,12 +246,16 @@ class Navigator:
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
         """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
         whose segments cross them."""
-        if self._readings is None:
-            self._readings = self.engine.sample(self._graph_cells())
+        if self._readings is None or self._readings[0] != self._reading_state():
+            self._readings = (self._reading_state(), self.engine.sample(self._graph_cells()))
         unreliable = None
         if without_blocked and self.monitor.blocked is not None:
             unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
-        return NodeGraph(self._readings, self.dmax_q, self._active_nodes(), unreliable)
+        return NodeGraph(self._readings[1], self.dmax_q, self._active_nodes(), unreliable)
+
+    def _reading_state(self) -> tuple:
+        """What the layers read at the graph cells depend on: the iteration, R, G and the edits so far."""
+        return self.engine.iterations, self.robot, self.goal, self._edits
 
     def node_edges(self) -> list[tuple[int, int]]:
         """The node pairs (a < b) connected in the node graph now (eq. 14), e.g. for a figure."""
