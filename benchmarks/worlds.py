@@ -126,36 +126,36 @@ def _detections(scenario: tdp.Scenario, record: dict, navigator: tdp.Navigator, 
 
 
 def summarise(rows: list[dict]) -> list[dict]:
-    """Per family, K and planner (D* Lite and the oracle repeated under each K)."""
+    """Per family, K and planner (D* Lite and the oracle repeated under each K). Mean and max ratios are over the
+    worlds every planner that ran there reached; D* Lite may have run on some sizes only."""
     out = []
     for family in dict.fromkeys(r["family"] for r in rows):
         mine = [r for r in rows if r["family"] == family]
         worlds = sorted({(r["size"], r["seed"]) for r in mine})
         for k in KS:
-            def row_of(planner, world):
-                return next(r for r in mine if r["planner"] == planner and (r["size"], r["seed"]) == world
-                            and r["k"] in (k, None))
-            planners = [p for p in ("accelerating", "plain DP", "D* Lite", "oracle") if any(
-                r["planner"] == p for r in mine)]
-            everyone = [w for w in worlds if all(row_of(p, w)["reached"] for p in planners)]
-            for planner in planners:
-                runs = [row_of(planner, w) for w in worlds]
-                ratios = [row_of(planner, w)["ratio"] for w in everyone]
-                summary = {"family": family, "k": k, "planner": planner, "worlds": len(worlds),
-                           "reached_pct": 100.0 * sum(r["reached"] for r in runs) / len(runs),
-                           "collisions": sum(r["collisions"] for r in runs), "hits": sum(r["hits"] for r in runs),
+            runs_of = {planner: {(r["size"], r["seed"]): r for r in mine
+                                 if r["planner"] == planner and r["k"] in (k, None)}
+                       for planner in ("accelerating", "plain DP", "D* Lite", "oracle")}
+            runs_of = {planner: runs for planner, runs in runs_of.items() if runs}
+            everyone = [w for w in worlds if all(runs[w]["reached"] for runs in runs_of.values() if w in runs)]
+            for planner, runs in runs_of.items():
+                ratios = [runs[w]["ratio"] for w in everyone if w in runs]
+                summary = {"family": family, "k": k, "planner": planner, "worlds": len(runs),
+                           "reached_pct": 100.0 * sum(r["reached"] for r in runs.values()) / len(runs),
+                           "collisions": sum(r["collisions"] for r in runs.values()),
+                           "hits": sum(r["hits"] for r in runs.values()),
                            "mean_ratio": float(np.mean(ratios)) if ratios else math.nan,
                            "max_ratio": float(np.max(ratios)) if ratios else math.nan,
-                           "waits": sum(r["waits"] for r in runs),
-                           "stuck_waits": sum(r.get("stuck_waits", 0) for r in runs),
-                           "ms_median": float(np.median([r["ms_median"] for r in runs]))}
+                           "waits": sum(r["waits"] for r in runs.values()),
+                           "stuck_waits": sum(r.get("stuck_waits", 0) for r in runs.values()),
+                           "ms_median": float(np.median([r["ms_median"] for r in runs.values()]))}
                 if planner == "accelerating":
-                    plain = [row_of("plain DP", w) for w in worlds]
+                    plain = runs_of["plain DP"]
                     summary["worse_than_dp"] = sum(
-                        (not a["reached"] and p["reached"]) or a["ratio"] > p["ratio"] + 0.01
-                        for a, p in zip(runs, plain))
-                    summary["detections"] = sum(r["detections"] for r in runs)
-                    summary["justified"] = sum(r["justified"] for r in runs)
+                        (not a["reached"] and plain[w]["reached"]) or a["ratio"] > plain[w]["ratio"] + 0.01
+                        for w, a in runs.items())
+                    summary["detections"] = sum(r["detections"] for r in runs.values())
+                    summary["justified"] = sum(r["justified"] for r in runs.values())
                 out.append(summary)
     return out
 
@@ -194,12 +194,14 @@ def main() -> None:
     args = parser.parse_args()
     seeds = range(args.first_seed, args.first_seed + (1 if args.quick else args.seeds))
     sizes = [100] if args.quick else args.sizes
+    name = "worlds-quick" if args.quick else "worlds"
     rows, began = [], time.perf_counter()
     total = len(args.families) * len(sizes) * len(seeds)
     for family in args.families:
         for size in sizes:
             for seed in seeds:
                 rows += run_world(family, size, seed, dstar=size <= args.dstar_max_size)
+                write_json(name, {"machine": machine(), "partial": True, "rows": rows})  # a crash loses nothing
                 done = len({(r["family"], r["size"], r["seed"]) for r in rows})
                 acc = [r for r in rows[-5:] if r["planner"] == "accelerating"]
                 print(f"  [{done}/{total}, {time.perf_counter() - began:.0f} s] {family}-{size}-{seed}: "
@@ -213,7 +215,6 @@ def main() -> None:
                   str(s.get("worse_than_dp", "-")), str(s.get("detections", "-")),
                   f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-",
                   f"{s['waits']} ({s['stuck_waits']})", f"{s['ms_median']:.2f}"] for s in summary])
-    name = "worlds-quick" if args.quick else "worlds"
     path = write_json(name, {"machine": machine(), "cutting_families": list(CUTTING), "summary": summary,
                              "rows": rows})
     figure(summary, path.with_suffix(".png"))
