@@ -1,8 +1,8 @@
 """PyBullet runs of tdp's scenarios (headless by default).
 
     python -m sim list
-    python -m sim run --scenario NAME [--no-accelerating] [--updates K] [--gui] --out DIR
-    python -m sim compare --scenario NAME [--updates K] --out DIR
+    python -m sim run --scenario NAME | --world FILE [--no-accelerating] [--updates K] [--gui] --out DIR
+    python -m sim compare --scenario NAME | --world FILE [--updates K] --out DIR
 """
 from __future__ import annotations
 
@@ -18,13 +18,12 @@ def _config(args: argparse.Namespace, accelerating: bool):
 
 
 def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str) -> dict:
-    import tdp
-    from tdp.cli import save_json
+    from tdp.cli import save_json, world_from
 
     from .episode import run_episode
     from .render import save_trace_figure
 
-    scenario = tdp.scenarios.get(args.scenario)
+    scenario = world_from(args)
     kind = "accelerating nodes" if accelerating else "plain DP"
     print(f"running {scenario.name} in PyBullet ({kind}, K = {args.updates})", flush=True)
     metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True)
@@ -33,9 +32,13 @@ def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem:
     return metrics
 
 
+def _ratio(metrics: dict) -> str:
+    return "-" if metrics["ratio"] is None else f"{metrics['ratio']:.3f}"
+
+
 def _summary(metrics: dict) -> str:
     return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
-            f"oracle {metrics['oracle_length_m']:.2f} m, ratio {metrics['ratio']:.3f}; contacts {metrics['contacts']}, "
+            f"oracle {metrics['oracle_length_m']:.2f} m, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m; planner "
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
@@ -54,13 +57,13 @@ def compare(args: argparse.Namespace) -> int:
 
     out = output_folder(args.out)
     rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind)) for kind in ("accelerating", "plain-dp")]
-    print(f"\n{args.scenario}, K = {args.updates}, PyBullet DIRECT")
+    print(f"\n{rows[0][1]['scenario']}, K = {args.updates}, PyBullet DIRECT")
     print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "
           "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for kind, m in rows:
         print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {m['oracle_length_m']:.2f} "
-              f"| {m['ratio']:.3f} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
+              f"| {_ratio(m)} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))
     return 0
@@ -82,13 +85,15 @@ def _positive(text: str) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
+    from tdp.cli import add_world_arguments
+
     main = argparse.ArgumentParser(prog="python -m sim", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = main.add_subparsers(dest="command", required=True)
     commands.add_parser("list", help="list the scenarios").set_defaults(run=list_scenarios)
     for name, function in (("run", run), ("compare", compare)):
         sub = commands.add_parser(name, help=f"{name} a scenario in PyBullet")
-        sub.add_argument("--scenario", required=True)
+        add_world_arguments(sub)
         sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
         sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
         if name == "run":

@@ -21,13 +21,12 @@ from .world import SimWorld, cell_centres
 
 @dataclass(frozen=True)
 class SimConfig:
-    """Physical scale of a run. One scenario tick lasts ``tick_s``: the robot (``max_speed`` m/s) crosses about one
-    ``cell_m`` cell per tick, so obstacles at 0.5 cells per tick move at half its speed, as in the paper. Obstacles
-    grow by the robot's radius plus ``margin_m``; moving boxes are also swept along their measured velocity over
-    ``horizon_s`` seconds, so that the robot keeps out of their way between planner ticks."""
+    """The robot's and the simulator's settings. The world's scale comes from the scenario: a cell is its map's
+    resolution (0.1 m in the named scenarios) and a tick its ``tick_s`` (0.2 s there), so the robot at
+    ``max_speed`` (m/s) crosses about one cell per tick and obstacles at 0.5 cells per tick move at half its speed,
+    as in the paper. Obstacles grow by the robot's radius plus ``margin_m``; moving boxes are also swept along
+    their measured velocity over ``horizon_s`` seconds, so that the robot keeps out of their way between ticks."""
 
-    cell_m: float = 0.1
-    tick_s: float = 0.2
     physics_hz: int = 240
     control_hz: int = 20
     margin_m: float = 0.1
@@ -41,7 +40,7 @@ class SimConfig:
         return RADIUS_M + self.margin_m
 
     def __post_init__(self):
-        for name in ("cell_m", "tick_s", "margin_m", "horizon_s", "goal_tolerance_m", "max_speed"):
+        for name in ("margin_m", "horizon_s", "goal_tolerance_m", "max_speed"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
@@ -76,9 +75,10 @@ class _Run:
     def __init__(self, scenario: tdp.Scenario, config: tdp.NavigatorConfig, sim: SimConfig, client: int):
         self.scenario, self.config, self.sim, self.client = scenario, config, sim, client
         p.setTimeStep(1.0 / sim.physics_hz, physicsClientId=client)
-        self.world = SimWorld(client, scenario, sim.cell_m, sim.tick_s)
+        self.cell_m, self.tick_s = scenario.grid.resolution, scenario.tick_s
+        self.world = SimWorld(client, scenario, self.cell_m, self.tick_s)
         self.grid = self.world.grid
-        self.static = scenario.grid.inflate(sim.inflate_m / sim.cell_m).occupied
+        self.static = scenario.grid.inflate(sim.inflate_m / self.cell_m).occupied
         mask = self.static | self.world.moving_footprints(sim.inflate_m, 0.0, sim.horizon_s)
         for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
             if mask[cell]:
@@ -104,7 +104,7 @@ class _Run:
 
     def plan(self, tick: int) -> TickResult:
         """Rasterise, send the changed cells and the target's move, run the planner's tick."""
-        now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.sim.tick_s,
+        now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.tick_s,
                                                          self.sim.horizon_s)
         self.feed.update(self.navigator, now, self.scenario.target(tick))
         self.navigator.move_robot(self.robot_cell())
@@ -133,7 +133,7 @@ class _Run:
             route = [self.grid.cell_to_world(*self.feed.target)]
         steps_per_control = sim.physics_hz // sim.control_hz
         control_dt = 1.0 / sim.control_hz
-        steps = round(sim.tick_s * sim.physics_hz)
+        steps = round(self.tick_s * sim.physics_hz)
         last = self.robot.pose()
         for step in range(steps):
             if step % steps_per_control == 0:
@@ -196,24 +196,26 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
             run.drive(tick, result)
             if progress and tick % 25 == 0:
                 x, y, _ = run.robot.pose()
-                print(f"  [{scenario.name}] t = {tick * sim.tick_s:5.1f} s: robot at ({x:.2f}, {y:.2f}) m, "
+                print(f"  [{scenario.name}] t = {tick * run.tick_s:5.1f} s: robot at ({x:.2f}, {y:.2f}) m, "
                       f"{result.mode}", file=sys.stderr, flush=True)
         wall_s = time.perf_counter() - began
         reached = run.reached()
     finally:
         p.disconnect(physicsClientId=client)
-    cells = math.ceil(sim.inflate_m / sim.cell_m)
+    cells = math.ceil(sim.inflate_m / run.cell_m)
     oracle = oracle_run(inflated_scenario(scenario, cells), config, max_ticks)
-    oracle_m = oracle["length"] * sim.cell_m
+    oracle_m = oracle["length"] * run.cell_m
     turn_point, switch_back_point = run.landmark_points()
     return {
         "scenario": scenario.name, "accelerating": config.accelerating, "updates_per_move": config.updates_per_move,
-        "reached": reached, "time_s": tick * sim.tick_s, "wall_s": wall_s, "ticks": tick,
+        "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick,
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
-        "ratio": run.length_m / oracle_m if oracle_m > 0 else 1.0, "contacts": run.contact_steps,
+        "ratio": run.length_m / oracle_m if oracle["reached"] and oracle_m > 0 else None,
+        "contacts": run.contact_steps,
         "min_clearance_m": run.min_clearance, "detections": run.detections(),
         "planner_ms_per_tick": timing_summary(run.planner_s),
         "trace": run.trace, "modes": [result.mode for result in run.results], "nodes": run.navigator.nodes.tolist(),
         "turn_point": turn_point, "switch_back_point": switch_back_point,
-        "oracle_trajectory": oracle["trajectory"], "sim": asdict(sim), "config": config.to_dict(),
+        "oracle_trajectory": oracle["trajectory"], "config": config.to_dict(),
+        "sim": {**asdict(sim), "cell_m": run.cell_m, "tick_s": run.tick_s},
     }

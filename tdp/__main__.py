@@ -1,7 +1,7 @@
 """Command line of tdp.
 
     python -m tdp list                                   the named scenarios
-    python -m tdp run --scenario NAME [options] --out DIR   an episode: metrics.json and a figure
+    python -m tdp run --scenario NAME | --world FILE [options] --out DIR   an episode: metrics.json and a figure
     python -m tdp plan MAP --start R C --goal R C [--out DIR]  shortest path on a map file
 """
 from __future__ import annotations
@@ -24,10 +24,10 @@ def list_scenarios(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     """Run one episode and write metrics.json and episode.png into --out."""
     import tdp
-    from tdp.cli import output_folder, save_json
+    from tdp.cli import output_folder, save_json, world_from
     from tdp.plot import save_episode_figure
 
-    scenario = tdp.scenarios.get(args.scenario)
+    scenario = world_from(args)
     out = output_folder(args.out)
     config = tdp.NavigatorConfig(accelerating=not args.no_accelerating, nodes=args.nodes, vision=args.vision,
                                  updates_per_move=args.updates, detect_window=args.detect_window,
@@ -77,12 +77,14 @@ def plan(args: argparse.Namespace) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
+    from tdp.cli import add_world_arguments
+
     main = argparse.ArgumentParser(prog="python -m tdp", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = main.add_subparsers(dest="command", required=True)
     commands.add_parser("list", help="list the named scenarios").set_defaults(run=list_scenarios)
     r = commands.add_parser("run", help="run a scenario: metrics.json and episode.png")
-    r.add_argument("--scenario", required=True)
+    add_world_arguments(r)
     r.add_argument("--no-accelerating", action="store_true", help="plain DP, the paper's baseline")
     r.add_argument("--updates", type=int, default=4, help="K, DP iterations per robot move (default 4)")
     r.add_argument("--nodes", type=int, default=25, help="number of accelerating nodes (default 25)")

@@ -24,6 +24,20 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
         return 130
 
 
+def add_world_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--scenario NAME`` (a named scenario) or ``--world FILE`` (a world file), exactly one."""
+    which = parser.add_mutually_exclusive_group(required=True)
+    which.add_argument("--scenario", help="a named scenario (list them with the list command)")
+    which.add_argument("--world", help="a world file (YAML: see the README's 'Your own world')")
+
+
+def world_from(args: argparse.Namespace):
+    """The Scenario that ``--scenario`` or ``--world`` names."""
+    import tdp
+
+    return tdp.load_world(args.world) if args.world else tdp.scenarios.get(args.scenario)
+
+
 def output_folder(path: str | Path, option: str = "--out") -> Path:
     """Create the output folder ``path`` (and its parents) now, before any long work, or raise ValueError saying
     why it cannot be one (a file is in the way, no permission)."""

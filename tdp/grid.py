@@ -110,6 +110,24 @@ class GridMap:
         return ox + math.cos(yaw) * u - math.sin(yaw) * v, oy + math.sin(yaw) * u + math.cos(yaw) * v
 
 
+def rectangles(occupied: np.ndarray) -> list[tuple[int, int, int, int]]:
+    """Cover the occupied cells with few (r0, c0, r1, c1) rectangles: runs per row, merged down equal runs."""
+    open_runs: dict[tuple[int, int], int] = {}
+    done = []
+    for r in range(occupied.shape[0] + 1):
+        runs = set()
+        if r < occupied.shape[0]:
+            row = np.concatenate([[False], occupied[r], [False]])
+            edges = np.flatnonzero(row[1:] != row[:-1])
+            runs = {(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])}
+        for run in list(open_runs):
+            if run not in runs:
+                done.append((open_runs.pop(run), run[0], r, run[1]))
+        for run in runs:
+            open_runs.setdefault(run, r)
+    return sorted(done)
+
+
 class Problem(NamedTuple):
     """One line of a MovingAI ``.scen``: start and goal cells (row, col) and the published optimal length."""
 

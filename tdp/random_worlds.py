@@ -26,6 +26,9 @@ from .grid import GridMap
 from .world import Obstacle, Scenario
 
 FAMILIES = ("cluttered", "rooms", "corridor", "clearing", "moving-target", "crossing")
+#: Metres per cell of the generated maps (as in the named scenarios: a robot at 0.5 m/s crosses a cell per 0.2 s
+#: tick).
+CELL_M = 0.1
 #: Families whose worlds contain a change that cuts or opens a route (the others never cut one).
 CUTTING = ("rooms", "corridor", "clearing")
 
@@ -145,7 +148,7 @@ def _cluttered(size: int, rng) -> Scenario:
     start, goal = _near(rng, size, (0.06, 0.06), 0.04), _near(rng, size, (0.94, 0.94), 0.04)
     occupied = _clutter(rng, size, int(rng.integers(6, 12)) * (size // 100) ** 2, [start, goal])
     boxes = _sliding_boxes(rng, size, int(rng.integers(3, 7)), occupied | _keep_free(size, [start, goal], 6))
-    return Scenario(GridMap(occupied), start, goal, obstacles=boxes,
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=boxes,
                     description="clutter and sliding boxes; no route is ever cut")
 
 
@@ -184,7 +187,7 @@ def _rooms(size: int, rng) -> Scenario:
             closed[second[0]:second[2], second[1]:second[3]] = True
             if _route(closed, start, goal):
                 obstacles.append(Obstacle(box=second, appear_at=tick + int(rng.integers(5, int(0.25 * size)))))
-    return Scenario(GridMap(occupied), start, goal, obstacles=obstacles, change_tick=tick, blocking=0,
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=obstacles, change_tick=tick, blocking=0,
                     description="rooms whose doors close on the robot's route (sometimes a second on the detour)")
 
 
@@ -222,7 +225,7 @@ def _corridor(size: int, rng) -> Scenario:
     appear = int(rng.integers(min(5, latest - 1), latest))
     box = Obstacle(box=(alcove, park, alcove + width, park + width), waypoints=[(main, park)], speed=0.5,
                    appear_at=appear)
-    return Scenario(GridMap(occupied), start, goal, obstacles=[box], change_tick=appear + parking, blocking=0,
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=[box], change_tick=appear + parking, blocking=0,
                     description="a box drives out of an alcove and parks in the corridor; a longer side route")
 
 
@@ -239,7 +242,7 @@ def _clearing(size: int, rng) -> Scenario:
         occupied[row - _scaled(size, 3):row + thick + _scaled(size, 3), col:col + width] = False
     plug = Obstacle(box=(row, short, row + thick, short + width), vanish_at=int(rng.integers(int(0.1 * size),
                                                                                           int(0.4 * size))))
-    return Scenario(GridMap(occupied), start, goal, obstacles=[plug], change_tick=plug.vanish_at, blocking=0,
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=[plug], change_tick=plug.vanish_at, blocking=0,
                     description="a plugged short passage opens mid-journey; a long one is always open")
 
 
@@ -251,7 +254,7 @@ def _moving_target(size: int, rng) -> Scenario:
     boxes = _sliding_boxes(rng, size, int(rng.integers(2, 4)),
                            occupied | _band((size, size), (0, 0, 1, 1), points, _scaled(size, 4))
                            | _keep_free(size, [start], 6))
-    return Scenario(GridMap(occupied), start, points[0], obstacles=boxes, target_waypoints=points[1:],
+    return Scenario(GridMap(occupied, CELL_M), start, points[0], obstacles=boxes, target_waypoints=points[1:],
                     target_speed=float(rng.uniform(0.25, 0.45)),
                     description="the target walks a free street among clutter and sliding boxes")
 
@@ -280,7 +283,7 @@ def _crossing(size: int, rng) -> Scenario:
         boxes.append(Obstacle(box=box, waypoints=_shuttle(a, b, size, speed), speed=speed))
     if not boxes:
         raise _Redraw
-    return Scenario(GridMap(occupied), start, goal, obstacles=boxes,
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=boxes,
                     description="boxes keep crossing the robot's route near its middle")
 
 

@@ -83,7 +83,8 @@ class Scenario:
     ``target_speed`` cells per tick), and box ``obstacles``.
 
     ``change_tick`` (when the blockage or clearing happens) and ``blocking`` (index of the obstacle that causes it)
-    are used by the metrics; ``max_ticks`` bounds an episode.
+    are used by the metrics; ``max_ticks`` bounds an episode; ``tick_s`` is the duration of a tick in seconds (for
+    runners on a clock); ``map_source`` is the map entry of the world file it came from, if any.
     """
 
     grid: GridMap
@@ -97,6 +98,8 @@ class Scenario:
     change_tick: int | None = None
     blocking: int | None = None
     max_ticks: int | None = None
+    tick_s: float = 0.2
+    map_source: dict | None = None
 
     def __post_init__(self):
         if not isinstance(self.grid, GridMap):
@@ -114,9 +117,16 @@ class Scenario:
         if not isinstance(self.name, str) or not isinstance(self.description, str):
             raise ValueError(f"Scenario name and description must be strings, got {self.name!r}, {self.description!r}")
         checks.optional_integer(self.max_ticks, "Scenario max_ticks", 1)
+        self.tick_s = checks.number(self.tick_s, "tick_s (seconds)", 0.0, inclusive=False)
         checks.optional_integer(self.change_tick, "Scenario change_tick (a tick)", 0)
         if self.blocking is not None and not 0 <= checks.integer(self.blocking, "blocking") < len(self.obstacles):
             raise ValueError(f"blocking must index an obstacle (0..{len(self.obstacles) - 1}), got {self.blocking}")
+
+    def to_yaml(self) -> str:
+        """This world as a world file (:mod:`tdp.worldfile`), in cells; :func:`tdp.load_world` reads it back."""
+        from .worldfile import world_yaml
+
+        return world_yaml(self)
 
     def occupancy(self, tick: int) -> np.ndarray:
         """bool (H, W): the static map plus every box present at ``tick``."""

@@ -8,9 +8,10 @@ import pybullet as p
 import pytest
 
 import tdp
-from sim.episode import SimConfig, connect, run_episode
+from sim.episode import connect, run_episode
 from sim.robot import DiffDriveRobot, wheel_speeds
-from sim.world import SimWorld, box_cells, rectangles
+from sim.world import SimWorld, box_cells
+from tdp.grid import rectangles
 
 
 @pytest.fixture
@@ -102,14 +103,14 @@ def test_every_scenario_reaches_the_goal_in_pybullet_without_contact(name):
     assert metrics["reached"]
     assert metrics["contacts"] == 0
     assert metrics["min_clearance_m"] > 0
-    assert metrics["time_s"] <= tdp.scenarios.get(name).max_ticks * SimConfig().tick_s
+    assert metrics["time_s"] <= tdp.scenarios.get(name).max_ticks * tdp.scenarios.get(name).tick_s
     assert 0.8 < metrics["ratio"] < 1.3
 
 
 def test_start_without_room_for_the_robot_is_a_clear_error():
     occupied = np.zeros((20, 20), bool)
     occupied[:, 3] = True
-    scenario = tdp.Scenario(tdp.GridMap(occupied), (5, 4), (10, 15))
+    scenario = tdp.Scenario(tdp.GridMap(occupied, resolution=0.1), (5, 4), (10, 15))
     with pytest.raises(ValueError, match="no room for the robot"):
         run_episode(scenario)
 
