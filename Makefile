@@ -13,7 +13,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(PY) -m sim compare --scenario sudden-blockage --updates 1 --out demo-output
+	$(PY) -m sim compare --scenario sudden-blockage --updates 1 --animate --out demo-output
 
 test: $(STAMP)
 	$(PY) -m pytest -q

@@ -17,7 +17,8 @@ def _config(args: argparse.Namespace, accelerating: bool):
     return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates)
 
 
-def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str) -> dict:
+def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str,
+                  frames: list | None = None) -> dict:
     from tdp.cli import save_json, world_from
 
     from .episode import run_episode
@@ -26,7 +27,8 @@ def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem:
     scenario = world_from(args)
     kind = "accelerating nodes" if accelerating else "plain DP"
     print(f"running {scenario.name} in PyBullet ({kind}, K = {args.updates})", flush=True)
-    metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True)
+    metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True,
+                          frames=frames)
     metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
     metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
     return metrics
@@ -43,12 +45,25 @@ def _summary(metrics: dict) -> str:
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
 
+def _animate(args: argparse.Namespace, out: Path, films: list[tuple[str, list]]) -> str:
+    """Write the camera films side by side as animation.gif in ``out``; returns its path."""
+    from .render import save_frames_animation
+
+    path = save_frames_animation(films, out / "animation.gif")
+    print(f"animation: {path}")
+    return str(path)
+
+
 def run(args: argparse.Namespace) -> int:
     from tdp.cli import output_folder
 
-    metrics = _run_and_save(args, not args.no_accelerating, output_folder(args.out), "metrics")
+    out = output_folder(args.out)
+    frames = [] if args.animate else None
+    metrics = _run_and_save(args, not args.no_accelerating, out, "metrics", frames)
     print(_summary(metrics))
     print(f"wrote {metrics['json']} and {metrics['figure']}")
+    if args.animate:
+        _animate(args, out, [("accelerating nodes" if not args.no_accelerating else "plain DP", frames)])
     return 0
 
 
@@ -56,7 +71,8 @@ def compare(args: argparse.Namespace) -> int:
     from tdp.cli import output_folder
 
     out = output_folder(args.out)
-    rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind)) for kind in ("accelerating", "plain-dp")]
+    films = {kind: [] if args.animate else None for kind in ("accelerating", "plain-dp")}
+    rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind, frames)) for kind, frames in films.items()]
     print(f"\n{rows[0][1]['scenario']}, K = {args.updates}, PyBullet DIRECT")
     print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "
           "planner ms/tick (median) |")
@@ -66,6 +82,8 @@ def compare(args: argparse.Namespace) -> int:
               f"| {_ratio(m)} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))
+    if args.animate:
+        _animate(args, out, [(f"{kind}, K = {args.updates}", frames) for kind, frames in films.items()])
     return 0
 
 
@@ -96,6 +114,8 @@ def parser() -> argparse.ArgumentParser:
         add_world_arguments(sub)
         sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
         sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
+        sub.add_argument("--animate", action="store_true",
+                         help="also write animation.gif from the simulator's own camera (headless)")
         if name == "run":
             sub.add_argument("--no-accelerating", action="store_true", help="plain DP")
             sub.add_argument("--gui", action="store_true", help="open the PyBullet window (needs a display)")

@@ -33,6 +33,7 @@ class SimConfig:
     horizon_s: float = 1.0
     goal_tolerance_m: float = 0.1
     max_speed: float = 0.5
+    frame_every: int = 2
 
     @property
     def inflate_m(self) -> float:
@@ -181,12 +182,36 @@ class _Run:
         return math.hypot(gx - x, gy - y) <= self.sim.goal_tolerance_m
 
 
+class TopCamera:
+    """The simulator's camera straight above the map's centre, seeing the whole map (TinyRenderer: works headless)."""
+
+    def __init__(self, client: int, grid: tdp.GridMap, pixels: int = 360):
+        self.client, self.pixels = client, pixels
+        width, height = grid.shape[1] * grid.resolution, grid.shape[0] * grid.resolution
+        centre = (width / 2, height / 2, 0.0)
+        fov = 40.0
+        eye_height = 0.55 * max(width, height) / math.tan(math.radians(fov / 2))
+        self.view = p.computeViewMatrix((centre[0], centre[1], eye_height), centre, (0, 1, 0), physicsClientId=client)
+        self.projection = p.computeProjectionMatrixFOV(fov, 1.0, eye_height * 0.5, eye_height * 1.5,
+                                                       physicsClientId=client)
+
+    def picture(self) -> np.ndarray:
+        """An RGB picture (pixels x pixels x 3, uint8) of the world now."""
+        _, _, rgba, _, _ = p.getCameraImage(self.pixels, self.pixels, self.view, self.projection,
+                                            renderer=p.ER_TINY_RENDERER, physicsClientId=self.client)
+        return np.asarray(rgba, np.uint8).reshape(self.pixels, self.pixels, 4)[:, :, :3].copy()
+
+
 def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.NavigatorConfig(),
-                sim: SimConfig = SimConfig(), gui: bool = False, progress: bool = False) -> dict:
-    """Run ``scenario`` in PyBullet and return its metrics (lengths in metres, times in seconds)."""
+                sim: SimConfig = SimConfig(), gui: bool = False, progress: bool = False,
+                frames: list | None = None) -> dict:
+    """Run ``scenario`` in PyBullet and return its metrics (lengths in metres, times in seconds). With ``frames``
+    (a list), the simulator's own camera looks down on the world every ``sim.frame_every`` ticks and each picture
+    (an (H, W, 3) uint8 array) is appended to it."""
     client = connect(gui)
     try:
         run = _Run(scenario, config, sim, client)
+        camera = TopCamera(client, run.grid) if frames is not None else None
         max_ticks = scenario.max_ticks or 4 * sum(scenario.grid.shape)
         tick = 0
         began = time.perf_counter()
@@ -194,6 +219,8 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
             tick += 1
             result = run.plan(tick)
             run.drive(tick, result)
+            if camera and (tick - 1) % sim.frame_every == 0:
+                frames.append(camera.picture())
             if progress and tick % 25 == 0:
                 x, y, _ = run.robot.pose()
                 print(f"  [{scenario.name}] t = {tick * run.tick_s:5.1f} s: robot at ({x:.2f}, {y:.2f}) m, "

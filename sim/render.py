@@ -50,3 +50,23 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
                  f"contacts {metrics['contacts']}", fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
     return save_figure(fig, out)
+
+
+def save_frames_animation(films: list[tuple[str, list]], out: str | Path, fps: int = 10) -> Path:
+    """An animated GIF of camera pictures, one film per column with its title above (films may differ in length:
+    a finished one holds its last picture). Returns the file written."""
+    from PIL import Image, ImageDraw
+
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    height, width = films[0][1][0].shape[:2]
+    pictures = []
+    for k in range(max(len(frames) for _, frames in films)):
+        canvas = Image.new("RGB", (width * len(films), height + 18), "white")
+        draw = ImageDraw.Draw(canvas)
+        for column, (title, frames) in enumerate(films):
+            canvas.paste(Image.fromarray(frames[min(k, len(frames) - 1)]), (column * width, 18))
+            draw.text((column * width + 6, 3), title, fill="black")
+        pictures.append(canvas)
+    pictures[0].save(out, save_all=True, append_images=pictures[1:], duration=int(1000 / fps), loop=0)
+    return out

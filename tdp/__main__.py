@@ -38,6 +38,11 @@ def run(args: argparse.Namespace) -> int:
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
     metrics = save_json(episode.to_dict(), out / "metrics.json")
     figure = save_episode_figure(scenario, episode, out / "episode.png")
+    if args.animate:
+        from tdp.animate import save_episode_animation
+
+        figure = ", ".join(str(f) for f in [figure, *save_episode_animation(scenario, [episode], out / "episode.gif",
+                                                                         progress=True)])
     print(f"reached: {episode.reached} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
           f"{episode.oracle_length:.2f}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
@@ -95,6 +100,7 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--corner-cutting", action="store_true")
     r.add_argument("--max-ticks", type=int, default=None)
     r.add_argument("--out", default="out", help="output folder (default: out)")
+    r.add_argument("--animate", action="store_true", help="also write episode.gif (and .mp4 where ffmpeg exists)")
     r.set_defaults(run=run)
     p = commands.add_parser("plan", help="shortest path on a map file (MovingAI .map, ROS .yaml, image)")
     p.add_argument("map")

@@ -42,6 +42,7 @@ class Episode:
     closest_approach: float | None
     turn_point: tuple[int, int] | None
     switch_back_point: tuple[int, int] | None
+    backups: list[dict] = field(default_factory=list)  # {"tick", "path" (node ids; R = n, G = n + 1), "cost"}
     timings: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
@@ -199,4 +200,6 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
         collisions=record["collisions"], hits=record["hits"], iterations=navigator.engine.iterations,
         detections=detections, trajectory=record["trajectory"], modes=record["modes"],
         target_path=record["target_path"], oracle_trajectory=oracle_record["trajectory"], nodes=nodes, edges=edges,
-        closest_approach=closest, turn_point=turn, switch_back_point=back, timings=timings)
+        closest_approach=closest, turn_point=turn, switch_back_point=back, timings=timings,
+        backups=[{"tick": tick, "path": r.backup_path, "cost": r.backup_cost}
+                 for tick, r in enumerate(results, start=1) if r.backup_path is not None])

@@ -308,3 +308,26 @@ def test_unreachable_goal_makes_the_robot_wait_then_go_when_it_opens():
     assert episode.modes[:10] == ["wait"] * 10
     assert episode.reached and episode.collisions == 0
     assert grid.shape == (12, 12)
+
+
+def test_episode_animation_frames(tmp_path):
+    """tdp run --animate: one frame per tick (every n-th beyond MAX_FRAMES), both episodes side by side, each frame
+    a picture of the world that changes as the robot moves."""
+    from PIL import Image
+
+    from tdp.animate import MAX_FRAMES, save_episode_animation
+
+    scenario = tdp.scenarios.get("static")
+    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(accelerating=a)) for a in (True, False)]
+    written = save_episode_animation(scenario, episodes, tmp_path / "static.gif")
+    assert written[0] == tmp_path / "static.gif"
+    ticks = max(e.ticks for e in episodes)
+    step = -(-(ticks + 1) // MAX_FRAMES)
+    with Image.open(written[0]) as gif:
+        assert gif.n_frames == len(set(range(0, ticks + 1, step)) | {ticks})
+        assert gif.size[0] > 1.5 * gif.size[1] > 300  # two panels side by side
+        gif.seek(0)
+        first = np.asarray(gif.convert("RGB"), float)
+        gif.seek(gif.n_frames - 1)
+        last = np.asarray(gif.convert("RGB"), float)
+    assert first.std() > 10 and np.abs(first - last).sum() > 0
