@@ -25,17 +25,36 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
 
 
 def add_world_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--scenario NAME`` (a named scenario) or ``--world FILE`` (a world file), exactly one."""
+    """The world to run, exactly one of: ``--scenario NAME`` (a named scenario), ``--world FILE`` (a world file) or
+    ``--map FILE`` with ``--start``/``--goal`` (a quick world: ``--boxes N`` shuttling boxes from ``--seed S``, and a
+    blockage on the route with ``--blockage``)."""
     which = parser.add_mutually_exclusive_group(required=True)
     which.add_argument("--scenario", help="a named scenario (list them with the list command)")
     which.add_argument("--world", help="a world file (YAML: see the README's 'Your own world')")
+    which.add_argument("--map", help="a map file for a quick world (needs --start and --goal)")
+    quick = parser.add_argument_group("quick world on --map")
+    quick.add_argument("--start", nargs=2, type=int, metavar=("ROW", "COL"))
+    quick.add_argument("--goal", nargs=2, type=int, metavar=("ROW", "COL"))
+    quick.add_argument("--boxes", type=int, default=3, help="shuttling boxes (default 3)")
+    quick.add_argument("--seed", type=int, default=0, help="seed of the boxes (default 0)")
+    quick.add_argument("--blockage", action="store_true", help="a box appears in a narrow place of the route")
 
 
 def world_from(args: argparse.Namespace):
-    """The Scenario that ``--scenario`` or ``--world`` names."""
+    """The Scenario that ``--scenario``, ``--world`` or ``--map`` names."""
     import tdp
+    from tdp.random_worlds import boxes_on_map
 
-    return tdp.load_world(args.world) if args.world else tdp.scenarios.get(args.scenario)
+    if args.world:
+        return tdp.load_world(args.world)
+    if args.map:
+        if args.start is None or args.goal is None:
+            raise ValueError("--map needs --start ROW COL and --goal ROW COL")
+        if args.boxes < 0 or args.seed < 0:
+            raise ValueError(f"--boxes and --seed must be >= 0, got {args.boxes} and {args.seed}")
+        return boxes_on_map(tdp.load_map(args.map), tuple(args.start), tuple(args.goal), args.boxes, args.seed,
+                            args.blockage)
+    return tdp.scenarios.get(args.scenario)
 
 
 def output_folder(path: str | Path, option: str = "--out") -> Path:

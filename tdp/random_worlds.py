@@ -136,8 +136,9 @@ def _route(occupied: np.ndarray, start: tuple[int, int], goal: tuple[int, int]) 
     return field.path(start)
 
 
-def _keep_free(size: int, cells: list[tuple[int, int]], radius: int) -> np.ndarray:
-    mask = np.zeros((size, size), bool)
+def _keep_free(size: int | tuple[int, int], cells: list[tuple[int, int]], radius: int) -> np.ndarray:
+    """bool mask of the squares of ``radius`` around ``cells`` on a size x size map (or a map of that shape)."""
+    mask = np.zeros(size if isinstance(size, tuple) else (size, size), bool)
     for r, c in cells:
         mask[max(0, r - radius):r + radius + 1, max(0, c - radius):c + radius + 1] = True
     return mask
@@ -289,3 +290,66 @@ def _crossing(size: int, rng) -> Scenario:
 
 _BUILDERS = {"cluttered": _cluttered, "rooms": _rooms, "corridor": _corridor, "clearing": _clearing,
              "moving-target": _moving_target, "crossing": _crossing}
+
+
+def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], boxes: int = 3, seed: int = 0,
+                 blockage: bool = False) -> Scenario:
+    """A quick world on any map: ``boxes`` boxes of about 0.3-0.6 m shuttling back and forth over free ground at
+    0.3-0.6 cells per tick (the family generator's rule, here on a given map), kept clear of the walls, the start
+    and the goal; with ``blockage``, one more box appears in a narrow place of the robot's route about a third of the
+    way along and stays. Deterministic for a given seed."""
+    rng = np.random.default_rng([len(FAMILIES), int(boxes), int(seed)])
+    start, goal = grid.check_free_cell(start, "start"), grid.check_free_cell(goal, "goal")
+    route = _route(grid.occupied, start, goal)
+    if not route:
+        raise ValueError(f"goal {goal} cannot be reached from start {start} on this map")
+    keep_free = grid.occupied | _keep_free(grid.shape, [start, goal], 4)
+    free = np.argwhere(~keep_free)
+    obstacles: list[Obstacle] = []
+    side_cells = max(2, int(round(0.45 / grid.resolution)))
+    for _ in range(100 * max(1, boxes)):
+        if len(obstacles) == boxes or not len(free):
+            break
+        side = int(rng.integers(max(2, side_cells * 2 // 3), side_cells * 4 // 3 + 1))
+        r, c = (int(v) for v in free[rng.integers(len(free))])
+        step = (0, 1) if rng.random() < 0.5 else (1, 0)
+        length = int(rng.integers(3 * side, 8 * side))
+        end = (r + step[0] * length, c + step[1] * length)
+        box = (r, c, r + side, c + side)
+        if (end[0] + side > grid.shape[0] or end[1] + side > grid.shape[1]
+                or (_band(grid.shape, box, [(r, c), end], 1) & keep_free).any()):
+            continue
+        speed = float(rng.uniform(0.3, 0.6))
+        obstacles.append(Obstacle(box=box, waypoints=_shuttle((r, c), end, max(grid.shape), speed), speed=speed))
+    change = None
+    if blockage:
+        plug, change = _plug_on_route(grid, route)
+        obstacles.append(plug)
+    return Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
+                    blocking=len(obstacles) - 1 if blockage else None, max_ticks=4 * sum(grid.shape),
+                    description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
+
+
+def _plug_on_route(grid: GridMap, route: list[tuple[int, int]]) -> tuple[Obstacle, int]:
+    """A box filling the narrowest free run across the route between a third and two thirds of the way that leaves
+    another way to the goal, appearing when the robot is about a third of the way along; (box, tick)."""
+    candidates = []
+    for r, c in route[len(route) // 3:2 * len(route) // 3]:
+        for vertical in (True, False):
+            line = grid.occupied[:, c] if vertical else grid.occupied[r, :]
+            lo = hi = r if vertical else c
+            while lo > 0 and not line[lo - 1]:
+                lo -= 1
+            while hi < len(line) - 1 and not line[hi + 1]:
+                hi += 1
+            if lo > 0 and hi < len(line) - 1 and hi - lo <= max(grid.shape) // 4:
+                box = (lo, c - 1, hi + 1, c + 1) if vertical else (r - 1, lo, r + 1, hi + 1)
+                candidates.append((hi - lo, box))
+    for _, box in sorted(set(candidates)):
+        plugged = grid.occupied.copy()
+        plugged[max(box[0], 0):box[2], max(box[1], 0):box[3]] = True
+        if _route(plugged, route[0], route[-1]):
+            tick = max(1, len(route) // 3 - 10)
+            return Obstacle(box=box, appear_at=tick), tick
+    raise ValueError("no narrow place on the route between walls whose closing leaves another way; "
+                     "leave out the blockage")

@@ -99,3 +99,26 @@ def test_the_ros_world_runs_at_grid_level_and_in_pybullet_with_one_command_each(
     assert done.returncode == 0, done.stderr[-2000:]
     physics = json.loads((tmp_path / "sim" / "metrics.json").read_text())
     assert physics["reached"] and physics["contacts"] == 0 and physics["sim"]["cell_m"] == 0.05
+
+
+def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tmp_path):
+    from tdp.random_worlds import boxes_on_map
+
+    grid = tdp.load_map(ROOT / "tests" / "data" / "arena.map")
+    world = boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=1, blockage=True)
+    again = boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=1, blockage=True)
+    assert same_world(world, again, ticks=100)  # deterministic
+    assert len(world.obstacles) == 5 and world.blocking == 4 and world.change_tick == world.obstacles[4].appear_at
+    for obstacle in world.obstacles[:4]:  # the shuttling boxes sweep free ground only
+        for tick in range(0, 300, 5):
+            r0, c0, r1, c1 = obstacle.footprint(tick)
+            assert not grid.occupied[r0:r1, c0:c1].any()
+    plugged = tdp.DistanceField(tdp.GridMap(world.occupancy(world.change_tick)), world.goal)
+    plugged.converge()
+    assert np.isfinite(plugged.distance(world.start))
+    done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--start", "1", "3", "--goal", "47", "46",
+               "--boxes", "4", "--seed", "1", "--blockage", "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert json.loads((tmp_path / "metrics.json").read_text())["reached"]
+    done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--out", str(tmp_path))
+    assert done.returncode == 2 and "--map needs --start" in done.stderr
