@@ -24,6 +24,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.blockage
 	$(PY) -m benchmarks.paper
 	$(PY) -m benchmarks.worlds
+	$(PY) -m benchmarks.budget
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results

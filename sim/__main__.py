@@ -14,7 +14,7 @@ from pathlib import Path
 def _config(args: argparse.Namespace, accelerating: bool):
     import tdp
 
-    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates)
+    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates, budget_ms=args.budget_ms)
 
 
 def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str,
@@ -113,6 +113,8 @@ def parser() -> argparse.ArgumentParser:
         sub = commands.add_parser(name, help=f"{name} a scenario in PyBullet")
         add_world_arguments(sub)
         sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
+        sub.add_argument("--budget-ms", type=float, default=None,
+                         help="a planning budget per control tick instead of K (at most the world's tick_s)")
         sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
         sub.add_argument("--animate", action="store_true",
                          help="also write animation.gif from the simulator's own camera (headless)")

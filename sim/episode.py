@@ -77,6 +77,9 @@ class _Run:
         self.scenario, self.config, self.sim, self.client = scenario, config, sim, client
         p.setTimeStep(1.0 / sim.physics_hz, physicsClientId=client)
         self.cell_m, self.tick_s = scenario.grid.resolution, scenario.tick_s
+        if config.budget_ms is not None and config.budget_ms > 1e3 * self.tick_s:
+            raise ValueError(f"budget_ms {config.budget_ms} is longer than the control period, a tick of "
+                             f"{1e3 * self.tick_s:g} ms")
         self.world = SimWorld(client, scenario, self.cell_m, self.tick_s)
         self.grid = self.world.grid
         self.static = scenario.grid.inflate(sim.inflate_m / self.cell_m).occupied

@@ -32,7 +32,7 @@ def run(args: argparse.Namespace) -> int:
     config = tdp.NavigatorConfig(accelerating=not args.no_accelerating, nodes=args.nodes, vision=args.vision,
                                  updates_per_move=args.updates, detect_window=args.detect_window,
                                  detect_rise=args.detect_rise, neighbourhood=args.neighbourhood,
-                                 corner_cutting=args.corner_cutting)
+                                 corner_cutting=args.corner_cutting, budget_ms=args.budget_ms)
     print(f"running {scenario.name} ({'accelerating nodes' if config.accelerating else 'plain DP'}, "
           f"K = {config.updates_per_move})", flush=True)
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
@@ -92,6 +92,8 @@ def parser() -> argparse.ArgumentParser:
     add_world_arguments(r)
     r.add_argument("--no-accelerating", action="store_true", help="plain DP, the paper's baseline")
     r.add_argument("--updates", type=int, default=4, help="K, DP iterations per robot move (default 4)")
+    r.add_argument("--budget-ms", type=float, default=None,
+                   help="a time budget per tick instead of K: as many DP iterations as fit (at least one)")
     r.add_argument("--nodes", type=int, default=25, help="number of accelerating nodes (default 25)")
     r.add_argument("--vision", type=float, default=2.5, help="DmaxQ / node spacing (default 2.5)")
     r.add_argument("--detect-window", type=int, default=6, help="J (default 6)")

@@ -52,6 +52,7 @@ class TickResult:
     backup_cost: float | None = None
     subgoal: int | None = None
     switched_back: bool = False
+    iterations: int = 0  # DP iterations the tick ran
     timings: dict = field(default_factory=dict)
 
 

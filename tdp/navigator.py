@@ -55,6 +55,8 @@ class NavigatorConfig:
     nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
     spacing: lattice spacing s in cells, overriding ``nodes`` when given.
     vision: DmaxQ / s (ARCHITECTURE §5.2). updates_per_move: K, DP iterations per robot move.
+    budget_ms: a time budget per tick in milliseconds instead of a fixed K: each tick runs as many DP iterations
+    as fit in it, the monitor included (at least one; the number depends on the machine, so runs do too).
     detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
     d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
     placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
@@ -75,6 +77,7 @@ class NavigatorConfig:
     neighbourhood: int = 16
     corner_cutting: bool = False
     spacing: float | None = None
+    budget_ms: float | None = None
     placement: str = "free"
     switch_back: str = "evidence"
 
@@ -86,6 +89,8 @@ class NavigatorConfig:
             _check_number(self.spacing, "spacing", 1.0, inclusive=True)
         _check_number(self.vision, "vision", 0.0)
         _check_int(self.updates_per_move, "updates_per_move", 1)
+        if self.budget_ms is not None:
+            _check_number(self.budget_ms, "budget_ms", 0.0)
         _check_int(self.detect_window, "detect_window", 1)
         if self.detect_rise is not None:
             _check_number(self.detect_rise, "detect_rise", 0.0)
@@ -150,6 +155,7 @@ class Navigator:
         # Every layer at the graph cells, with the state it was read in: (iteration, R, G, edits), values.
         self._readings: tuple[tuple, np.ndarray] | None = None
         self._edits = 0  # map edits and setups so far: they change the layers between iterations
+        self.last_iterations = 0  # DP iterations the last tick ran
 
     # -- inputs ------------------------------------------------------------------------------------------------
     @property
@@ -211,28 +217,50 @@ class Navigator:
         result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
         result.subgoal = self._subgoal if self.state == "backup" else None
         result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
+        result.iterations = self.last_iterations
         return result
 
     def _run_iterations(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
-        """K DP iterations; with nodes, the monitor observes the pair distances after each (the engine samples
-        them as it iterates). Returns the newly blocked pairs with their iteration, and the seconds spent
-        in DP and monitor."""
-        k = self.config.updates_per_move
-        self._since_detection += k
+        """The tick's DP iterations - K, or with ``budget_ms`` as many as fit in the budget (at least one) - with
+        the monitor observing the pair distances after each (the engine samples them as it iterates). Returns the
+        newly blocked pairs with their iteration, and the seconds spent in DP and monitor."""
+        budget_s = None if self.config.budget_ms is None else self.config.budget_ms / 1e3
         began = time.perf_counter()
-        if not self.config.accelerating:
-            self.engine.step(k)
-            return [], time.perf_counter() - began, 0.0
-        samples = self.engine.advance(k, self._graph_cells())
-        self._readings = (self._reading_state(), samples[-1])
-        dp_s = time.perf_counter() - began
-        began = time.perf_counter()
-        new_pairs = []
+        k = self.config.updates_per_move if budget_s is None else 1
+        done, dp_s, monitor_s, new_pairs = 0, 0.0, 0.0, []
+        while True:
+            dp_began = time.perf_counter()
+            if self.config.accelerating:
+                samples = self.engine.advance(k, self._graph_cells())
+                self._readings = (self._reading_state(), samples[-1])
+            else:
+                self.engine.step(k)
+            monitor_began = time.perf_counter()
+            dp_s += monitor_began - dp_began
+            if self.config.accelerating:
+                new_pairs += self._observe(samples)
+            monitor_s += time.perf_counter() - monitor_began
+            done += k
+            if budget_s is None:
+                break
+            spent = time.perf_counter() - began
+            left = budget_s - spent
+            if left < spent / done:  # not enough left for one more iteration at the rate so far
+                break
+            k = max(1, min(int(left / (spent / done)), 2 * k))
+        self._since_detection += done
+        self.last_iterations = done
+        return new_pairs, dp_s, monitor_s
+
+    def _observe(self, samples: np.ndarray) -> list[tuple[int, tuple[int, int]]]:
+        """Feed the monitor one iteration's pair distances after another; the pairs newly blocked, with their
+        iteration."""
+        found = []
+        first = self.engine.iterations - len(samples) + 1
         for step, sample in enumerate(samples):
-            iteration = self.engine.iterations - k + step + 1
-            pairs = NodeGraph(sample, self.dmax_q, self._active_nodes(iteration)).pairs
-            new_pairs += [(iteration, pair) for pair in self.monitor.observe(pairs)]
-        return new_pairs, dp_s, time.perf_counter() - began
+            pairs = NodeGraph(sample, self.dmax_q, self._active_nodes(first + step)).pairs
+            found += [(first + step, pair) for pair in self.monitor.observe(pairs)]
+        return found
 
     def _graph_cells(self) -> np.ndarray:
         """The cells the node graph reads every layer at: the nodes, then R, then G."""

@@ -331,3 +331,13 @@ def test_episode_animation_frames(tmp_path):
         gif.seek(gif.n_frames - 1)
         last = np.asarray(gif.convert("RGB"), float)
     assert first.std() > 10 and np.abs(first - last).sum() > 0
+
+
+def test_a_time_budget_runs_at_least_one_iteration_and_more_when_it_can():
+    scenario = tdp.scenarios.get("sudden-blockage")
+    tiny = tdp.simulate(scenario, tdp.NavigatorConfig(budget_ms=1e-6), max_ticks=30)
+    assert tiny.iterations == tiny.ticks  # at least one iteration a tick, and no time for a second
+    roomy = tdp.simulate(scenario, tdp.NavigatorConfig(budget_ms=50.0), max_ticks=30)
+    assert roomy.iterations > 10 * roomy.ticks  # a settled map iterates in microseconds
+    with pytest.raises(ValueError, match="budget_ms"):
+        tdp.NavigatorConfig(budget_ms=0)
