@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import tdp
 from benchmarks.baselines.dstar_lite import DStarLite
-from benchmarks.common import (blockage_metrics, machine, print_table, quick_parser, run_navigator, unblocked_route,
-                               write_json)
+from benchmarks.common import (blockage_metrics, print_table, quick_parser, run_navigator, save_results,
+                               unblocked_route)
 from tdp.simulate import oracle_run, run_planner
 
 VARIANTS = {"accelerating, 16 nodes": {"nodes": 16}, "accelerating, 25 nodes": {"nodes": 25},
@@ -88,9 +88,7 @@ def main() -> None:
                   f"{r['ratio']:.3f}", str(r["turn_after"]), f"{r['closest']:.1f}", f"{r['ms_median']:.2f}",
                   f"{r['ms_mean']:.2f}",
                   f"{r['ms_p95']:.2f}", f"{r['ms_max']:.2f}"] for r in rows])
-    path = write_json("blockage-quick" if args.quick else "blockage", {"machine": machine(), "rows": rows})
-    figure(rows, path.with_suffix(".png"))
-    print(f"wrote {path} and {path.with_suffix('.png')}")
+    save_results("blockage-quick" if args.quick else "blockage", {"rows": rows}, lambda png: figure(rows, png))
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 import tdp
-from benchmarks.common import machine, print_table, quick_parser, write_json
+from benchmarks.common import print_table, quick_parser, save_results
 from tdp.contract import timing_summary
 from tdp.random_worlds import boxes_on_map
 from tdp.simulate import oracle_run, run_planner
@@ -80,9 +80,7 @@ def main() -> None:
     print_table(["world", "setting", "reached", "ratio", "iterations per tick (median)", "ms/tick (median)"],
                 [[r["world"], r["setting"], str(r["reached"]), "-" if r["ratio"] is None else f"{r['ratio']:.3f}",
                   f"{r['iterations']:.0f}", f"{r['ms']:.2f}"] for r in rows])
-    path = write_json("budget-quick" if args.quick else "budget", {"machine": machine(), "rows": rows})
-    figure(rows, path.with_suffix(".png"))
-    print(f"wrote {path} and {path.with_suffix('.png')}")
+    save_results("budget-quick" if args.quick else "budget", {"rows": rows}, lambda png: figure(rows, png))
 
 
 if __name__ == "__main__":

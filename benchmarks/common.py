@@ -40,6 +40,15 @@ def machine() -> dict:
             "date": time.strftime("%Y-%m-%d")}
 
 
+def save_results(name: str, payload: dict, figure: Callable[[Path], object]) -> Path:
+    """Write ``payload`` (with the machine) as results/<name>.json, then the figure drawn by ``figure(png_path)``
+    beside it - the JSON first, so that a failing figure loses no result - and print both paths."""
+    path = write_json(name, {"machine": machine(), **payload})
+    figure(path.with_suffix(".png"))
+    print(f"wrote {path} and {path.with_suffix('.png')}")
+    return path
+
+
 def write_json(name: str, payload: dict) -> Path:
     RESULTS.mkdir(parents=True, exist_ok=True)
     path = RESULTS / f"{name}.json"

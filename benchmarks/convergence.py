@@ -16,7 +16,7 @@ import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import machine, median_time, print_table, quick_parser, write_json
+from benchmarks.common import median_time, print_table, quick_parser, save_results
 from benchmarks.reference_graph import grid_graph
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai"
@@ -116,9 +116,8 @@ def main() -> None:
                 [[r["map"], str(r["cells"]), f"{r['build_ms']:.1f}", f"{r['dijkstra_ms']:.1f}",
                   f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", str(r["rounds"]),
                   str(r.get("jacobi_iterations", "-")), str(r["equal"])] for r in results])
-    path = write_json("convergence-quick" if args.quick else "convergence", {"machine": machine(), "results": results})
-    figure(results, path.with_suffix(".png"))
-    print(f"wrote {path} and {path.with_suffix('.png')}")
+    save_results("convergence-quick" if args.quick else "convergence", {"results": results},
+                 lambda png: figure(results, png))
 
 
 if __name__ == "__main__":

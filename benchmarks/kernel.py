@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from benchmarks.common import machine, median_time, print_table, quick_parser, write_json
+from benchmarks.common import median_time, print_table, quick_parser, save_results
 
 CASES = [(size, nodes) for size in (100, 256, 512, 1024, 2048) for nodes in (0, 25, 64, 256)]
 QUICK_CASES = [(100, 25), (256, 16)]  # a smoke run
@@ -136,9 +136,7 @@ def main() -> None:
     print_table(["map", "nodes", "threads", "dense ms", "numpy ms", "vs numpy", "G cell-layer/s",
                  "floor ms", "x floor", "steady ms"], rows)
     name = "kernel-quick" if args.quick else "kernel"
-    path = write_json(name, {"machine": machine(), "results": results})
-    figure(results, path.with_suffix(".png"))
-    print(f"wrote {path} and {path.with_suffix('.png')}")
+    save_results(name, {"results": results}, lambda png: figure(results, png))
 
 
 if __name__ == "__main__":

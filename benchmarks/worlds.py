@@ -24,7 +24,7 @@ from scipy.sparse.csgraph import dijkstra
 
 import tdp
 from benchmarks.baselines.dstar_lite import DStarLite
-from benchmarks.common import machine, print_table, quick_parser, write_json
+from benchmarks.common import machine, print_table, quick_parser, save_results, write_json
 from benchmarks.reference_graph import grid_graph
 from tdp.contract import timing_summary
 from tdp.random_worlds import CUTTING, FAMILIES, make_world
@@ -215,10 +215,8 @@ def main() -> None:
                   str(s.get("worse_than_dp", "-")), str(s.get("detections", "-")),
                   f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-",
                   f"{s['waits']} ({s['stuck_waits']})", f"{s['ms_median']:.2f}"] for s in summary])
-    path = write_json(name, {"machine": machine(), "cutting_families": list(CUTTING), "summary": summary,
-                             "rows": rows})
-    figure(summary, path.with_suffix(".png"))
-    print(f"wrote {path} and {path.with_suffix('.png')}")
+    save_results(name, {"cutting_families": list(CUTTING), "summary": summary, "rows": rows},
+                 lambda png: figure(summary, png))
 
 
 if __name__ == "__main__":
