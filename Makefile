@@ -27,4 +27,4 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.budget
 
 clean:
-	rm -rf $(VENV) demo-output benchmarks/results
+	rm -rf $(VENV) demo-output benchmarks/results/*-quick.*

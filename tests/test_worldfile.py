@@ -42,7 +42,7 @@ def test_a_world_on_a_ros_map_in_metres(tmp_path):
     assert scenario.start == grid.world_to_cell(-1.9, -0.4) and scenario.goal == grid.world_to_cell(1.9, 0.4)
     assert scenario.max_ticks == 400  # 80 s at 0.2 s a tick
     patrol, appearing = scenario.obstacles
-    assert patrol.speed == pytest.approx(0.2 * 0.2 / 0.05)  # 0.2 m/s: 0.8 cells per tick
+    assert patrol.speed == pytest.approx(0.15 * 0.2 / 0.05)  # 0.15 m/s: 0.6 cells per tick
     assert appearing.appear_at == 5  # 1 s
     r0, c0, r1, c1 = appearing.box  # [0.4, -0.35, 0.7, -0.05] m: 6 x 6 cells whose centres lie inside
     assert (r1 - r0, c1 - c0) == (6, 6)
@@ -94,7 +94,7 @@ def test_the_ros_world_runs_at_grid_level_and_in_pybullet_with_one_command_each(
     done = run("-m", "tdp", "run", "--world", str(EXAMPLE), "--out", str(tmp_path / "grid"))
     assert done.returncode == 0, done.stderr[-2000:]
     grid = json.loads((tmp_path / "grid" / "metrics.json").read_text())
-    assert grid["reached"] and grid["collisions"] == 0
+    assert grid["reached"] and grid["collisions"] == 0 and grid["hits"] == 0
     done = run("-m", "sim", "run", "--world", str(EXAMPLE), "--out", str(tmp_path / "sim"))
     assert done.returncode == 0, done.stderr[-2000:]
     physics = json.loads((tmp_path / "sim" / "metrics.json").read_text())
