@@ -12,5 +12,6 @@ from .world import Obstacle, Scenario
 from .worldfile import load_world
 
 __all__ = ["DistanceField", "Episode", "GridMap", "Mode", "Navigator", "NavigatorConfig", "Obstacle", "Planner",
-           "Problem", "Scenario", "TickResult", "load_map", "load_scenarios", "load_world", "random_worlds", "scenarios", "simulate"]
+           "Problem", "Scenario", "TickResult", "load_map", "load_scenarios", "load_world", "random_worlds",
+           "scenarios", "simulate"]
 __version__ = "0.1.0"

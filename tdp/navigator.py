@@ -34,19 +34,6 @@ EVIDENCE_SLACK = 0.1
 SETTLED_CELLS = 0.25
 
 
-def _check_int(value, name: str, low: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low:
-        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
-    return value
-
-
-def _check_number(value, name: str, low: float, inclusive: bool = False) -> float:
-    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-    if not ok or value < low or (value == low and not inclusive):
-        raise ValueError(f"{name} must be a finite number {'>=' if inclusive else '>'} {low}, got {value!r}")
-    return float(value)
-
-
 @dataclass(frozen=True)
 class NavigatorConfig:
     """Every parameter of the planner.
@@ -82,22 +69,23 @@ class NavigatorConfig:
     switch_back: str = "evidence"
 
     def __post_init__(self):
-        if not isinstance(self.accelerating, bool):
-            raise ValueError(f"accelerating must be True or False, got {self.accelerating!r}")
-        _check_int(self.nodes, "nodes", 1)
+        def normalised(name: str, value) -> None:  # the checked value, as a plain Python int, float or bool
+            object.__setattr__(self, name, value)
+
+        normalised("accelerating", checks.flag(self.accelerating, "accelerating"))
+        normalised("nodes", checks.integer(self.nodes, "nodes", 1))
         if self.spacing is not None:
-            _check_number(self.spacing, "spacing", 1.0, inclusive=True)
-        _check_number(self.vision, "vision", 0.0)
-        _check_int(self.updates_per_move, "updates_per_move", 1)
+            normalised("spacing", checks.number(self.spacing, "spacing", 1.0))
+        normalised("vision", checks.number(self.vision, "vision", 0.0, inclusive=False))
+        normalised("updates_per_move", checks.integer(self.updates_per_move, "updates_per_move", 1))
         if self.budget_ms is not None:
-            _check_number(self.budget_ms, "budget_ms", 0.0)
-        _check_int(self.detect_window, "detect_window", 1)
+            normalised("budget_ms", checks.number(self.budget_ms, "budget_ms", 0.0, inclusive=False))
+        normalised("detect_window", checks.integer(self.detect_window, "detect_window", 1))
         if self.detect_rise is not None:
-            _check_number(self.detect_rise, "detect_rise", 0.0)
+            normalised("detect_rise", checks.number(self.detect_rise, "detect_rise", 0.0, inclusive=False))
         check_cap(self.d_max, "d_max")
         check_neighbourhood(self.neighbourhood)
-        if not isinstance(self.corner_cutting, bool):
-            raise ValueError(f"corner_cutting must be True or False, got {self.corner_cutting!r}")
+        normalised("corner_cutting", checks.flag(self.corner_cutting, "corner_cutting"))
         if self.placement not in PLACEMENTS:
             raise ValueError(f"placement must be one of {PLACEMENTS}, got {self.placement!r}")
         if self.switch_back not in SWITCH_BACK:

@@ -136,9 +136,9 @@ def _route(occupied: np.ndarray, start: tuple[int, int], goal: tuple[int, int]) 
     return field.path(start)
 
 
-def _keep_free(size: int | tuple[int, int], cells: list[tuple[int, int]], radius: int) -> np.ndarray:
-    """bool mask of the squares of ``radius`` around ``cells`` on a size x size map (or a map of that shape)."""
-    mask = np.zeros(size if isinstance(size, tuple) else (size, size), bool)
+def _keep_free(shape: tuple[int, int], cells: list[tuple[int, int]], radius: int) -> np.ndarray:
+    """bool mask of the squares of ``radius`` around ``cells`` on a map of ``shape``."""
+    mask = np.zeros(shape, bool)
     for r, c in cells:
         mask[max(0, r - radius):r + radius + 1, max(0, c - radius):c + radius + 1] = True
     return mask
@@ -148,7 +148,7 @@ def _keep_free(size: int | tuple[int, int], cells: list[tuple[int, int]], radius
 def _cluttered(size: int, rng) -> Scenario:
     start, goal = _near(rng, size, (0.06, 0.06), 0.04), _near(rng, size, (0.94, 0.94), 0.04)
     occupied = _clutter(rng, size, int(rng.integers(6, 12)) * (size // 100) ** 2, [start, goal])
-    boxes = _sliding_boxes(rng, size, int(rng.integers(3, 7)), occupied | _keep_free(size, [start, goal], 6))
+    boxes = _sliding_boxes(rng, size, int(rng.integers(3, 7)), occupied | _keep_free((size, size), [start, goal], 6))
     return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=boxes,
                     description="clutter and sliding boxes; no route is ever cut")
 
@@ -254,7 +254,7 @@ def _moving_target(size: int, rng) -> Scenario:
     occupied = _clutter(rng, size, int(rng.integers(5, 10)) * (size // 100) ** 2, [start]) & ~street
     boxes = _sliding_boxes(rng, size, int(rng.integers(2, 4)),
                            occupied | _band((size, size), (0, 0, 1, 1), points, _scaled(size, 4))
-                           | _keep_free(size, [start], 6))
+                           | _keep_free((size, size), [start], 6))
     return Scenario(GridMap(occupied, CELL_M), start, points[0], obstacles=boxes, target_waypoints=points[1:],
                     target_speed=float(rng.uniform(0.25, 0.45)),
                     description="the target walks a free street among clutter and sliding boxes")
@@ -279,7 +279,7 @@ def _crossing(size: int, rng) -> Scenario:
         b = tuple(int(v) for v in np.clip(np.round(centre + reach * normal), 0, size - side))
         speed = float(rng.uniform(0.5, 0.8))
         box = (a[0], a[1], a[0] + side, a[1] + side)
-        if (_band((size, size), box, [a, b], 1) & (_keep_free(size, [start, goal], 4) | occupied)).any():
+        if (_band((size, size), box, [a, b], 1) & (_keep_free((size, size), [start, goal], 4) | occupied)).any():
             continue
         boxes.append(Obstacle(box=box, waypoints=_shuttle(a, b, size, speed), speed=speed))
     if not boxes:
