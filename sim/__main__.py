@@ -45,7 +45,7 @@ def _summary(metrics: dict) -> str:
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
 
-def _animate(args: argparse.Namespace, out: Path, films: list[tuple[str, list]]) -> str:
+def _animate(out: Path, films: list[tuple[str, list]]) -> str:
     """Write the camera films side by side as animation.gif in ``out``; returns its path."""
     from .render import save_frames_animation
 
@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     print(_summary(metrics))
     print(f"wrote {metrics['json']} and {metrics['figure']}")
     if args.animate:
-        _animate(args, out, [("accelerating nodes" if not args.no_accelerating else "plain DP", frames)])
+        _animate(out, [("accelerating nodes" if not args.no_accelerating else "plain DP", frames)])
     return 0
 
 
@@ -83,7 +83,7 @@ def compare(args: argparse.Namespace) -> int:
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))
     if args.animate:
-        _animate(args, out, [(f"{kind}, K = {args.updates}", frames) for kind, frames in films.items()])
+        _animate(out, [(f"{kind}, K = {args.updates}", frames) for kind, frames in films.items()])
     return 0
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import pybullet as p
 
 import tdp
-from tdp.contract import TickResult, WorldFeed, landmarks, timing_summary
+from tdp.contract import TickResult, WorldFeed, detection_records, landmarks, timing_summary
 from tdp.simulate import oracle_run
 
 from .control import PurePursuit
@@ -117,10 +117,6 @@ class _Run:
         self.planner_s.append(time.perf_counter() - began)
         self.results.append(result)
         return result
-
-    def detections(self) -> list[dict]:
-        return [{"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant}
-                for tick, result in enumerate(self.results, start=1) for d in result.detections]
 
     def landmark_points(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
         """Where the robot was (x, y in metres) when it turned (A) and when it switched back (B)."""
@@ -242,7 +238,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
         "ratio": run.length_m / oracle_m if oracle["reached"] and oracle_m > 0 else None,
         "contacts": run.contact_steps,
-        "min_clearance_m": run.min_clearance, "detections": run.detections(),
+        "min_clearance_m": run.min_clearance, "detections": detection_records(run.results),
         "planner_ms_per_tick": timing_summary(run.planner_s),
         "trace": run.trace, "modes": [result.mode for result in run.results], "nodes": run.navigator.nodes.tolist(),
         "turn_point": turn_point, "switch_back_point": switch_back_point,

@@ -79,6 +79,12 @@ def timing_summary(seconds: Sequence[float]) -> dict:
             "p95": float(np.percentile(values, 95)), "max": float(values.max())}
 
 
+def detection_records(results: Sequence[TickResult]) -> list[dict]:
+    """Every detection of a run as a record: its tick (1-based), DP iteration, node pair and relevance."""
+    return [{"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant}
+            for tick, result in enumerate(results, start=1) for d in result.detections]
+
+
 def landmarks(results: Sequence[TickResult]) -> tuple[int | None, int | None]:
     """The ticks (1-based) of the first relevant blockage detection (the turn point A of the paper's figures) and
     of the first switch back to the DP (B); None where there is none."""

@@ -11,7 +11,7 @@ import numpy as np
 from . import checks
 from .field import DistanceField
 from .grid import GridMap
-from .contract import Mode, Planner, TickResult, WorldFeed, landmarks, timing_summary
+from .contract import Mode, Planner, TickResult, WorldFeed, detection_records, landmarks, timing_summary
 from .navigator import Navigator, NavigatorConfig
 from .stencil import moves
 from .world import Scenario, box_distance
@@ -173,14 +173,11 @@ def _start_grid(scenario: Scenario) -> GridMap:
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
     results = record["results"]
-    detections = []
-    for tick, result in enumerate(results, start=1):
-        for d in result.detections:
-            delay = None
-            if scenario.change_tick is not None:
-                delay = d.iteration - scenario.change_tick * config.updates_per_move
-            detections.append({"tick": tick, "iteration": d.iteration, "pair": list(d.pair), "relevant": d.relevant,
-                               "delay_iterations": delay, "robot": list(record["trajectory"][tick - 1])})
+    detections = detection_records(results)
+    for d in detections:
+        d["delay_iterations"] = (None if scenario.change_tick is None
+                                 else d["iteration"] - scenario.change_tick * config.updates_per_move)
+        d["robot"] = list(record["trajectory"][d["tick"] - 1])
     turn_tick, back_tick = landmarks(results)
     turn = record["trajectory"][turn_tick - 1] if turn_tick else None
     back = record["trajectory"][back_tick] if back_tick else None
