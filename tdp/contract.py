@@ -104,10 +104,11 @@ class WorldFeed:
     def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int]) -> bool:
         """Send ``planner`` the changes from the last state to ``occupied`` and ``target``; return whether the
         target moved."""
+        occupied = np.asarray(occupied, bool)  # kept as it is, not copied: a runner hands a fresh map every tick
         changed = np.argwhere(occupied != self.occupied)
         if len(changed):
             planner.update_map(changed, occupied[changed[:, 0], changed[:, 1]])
-        self.occupied = np.array(occupied, bool)
+        self.occupied = occupied
         moved = tuple(target) != self.target
         if moved:
             self.target = tuple(target)
