@@ -12,7 +12,7 @@ from __future__ import annotations
 
 
 import tdp
-from benchmarks.baselines.dstar_lite import DStarLite
+from tdp.dstar_lite import DStarLite
 from benchmarks.common import (blockage_metrics, print_table, quick_parser, run_navigator, save_results,
                                unblocked_route)
 from tdp.simulate import oracle_run, run_planner

@@ -12,6 +12,7 @@ from typing import Callable
 
 
 RESULTS = Path(__file__).parent / "results"
+SPECS = Path(__file__).parent / "specs"
 
 
 def median_time(run: Callable[[], object], repeats: int, warmup: int = 1) -> float:
@@ -65,6 +66,34 @@ def quick_parser(doc: str):
     return parser
 
 
+def sweep_parser(doc: str, workers_default: str):
+    """The command line of a benchmark that is a sweep spec: --quick, --workers N (a local Dask cluster),
+    --resume (keep the journal of an interrupted run instead of measuring afresh)."""
+    parser = quick_parser(doc)
+    parser.add_argument("--workers", type=int, default=None,
+                        help=f"worker processes of a local Dask cluster (default: {workers_default})")
+    parser.add_argument("--resume", action="store_true",
+                        help="finish an interrupted run: keep the episodes its journal holds")
+    return parser
+
+
+def run_spec(name: str, args, serial: bool) -> tuple:
+    """Run ``specs/<name>.yaml`` (``<name>-quick.yaml`` with --quick) through tdp.sweep into
+    ``results/sweeps/<spec name>/`` (the journal, episodes.csv, summary.csv, ratio.png), afresh unless --resume;
+    ``serial`` unless --workers is given. Returns (spec, the journal's rows, the tidy table, in the same order)."""
+    from tdp.sweep import JOURNAL, load_spec, run_sweep, write_report
+    from tdp.sweep.report import tidy
+
+    spec = load_spec(SPECS / f"{name}{'-quick' if args.quick else ''}.yaml")
+    out = RESULTS / "sweeps" / spec.name
+    out.mkdir(parents=True, exist_ok=True)
+    if not args.resume:
+        (out / JOURNAL).unlink(missing_ok=True)
+    rows = run_sweep(spec, out, workers=args.workers, serial=serial and args.workers is None)
+    write_report(spec, rows, out)
+    return spec, rows, tidy(spec, rows)
+
+
 def print_table(headers: list[str], rows: list[list[str]]) -> None:
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(headers)]
     print("| " + " | ".join(h.ljust(w) for h, w in zip(headers, widths)) + " |")
@@ -96,21 +125,24 @@ def unblocked_route(scenario) -> list[tuple[int, int]]:
 
 
 def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[tuple[int, int]]) -> dict:
-    """Ratio to the oracle; ticks from the change to the turn (the first tick at which the robot leaves
-    ``route``, the way it would have gone without the blockage); the closest approach to the blocking box (cells)
-    after the change; planner time per tick (ms: median, mean, p95, max; map update, DP, monitor and search
-    together)."""
+    """Ratio to the oracle, :func:`turn_and_closest`, and planner time per tick (ms: median, mean, p95, max; map
+    update, DP, monitor and search together)."""
     from tdp.contract import timing_summary
+
+    per_tick = timing_summary([sum(r.timings.values()) for r in record["results"]])
+    return {"reached": record["reached"], "ticks": record["ticks"], "length": record["length"],
+            "ratio": record["length"] / oracle_length, **turn_and_closest(scenario, record["trajectory"], route),
+            **{f"ms_{name}": value for name, value in per_tick.items()}}
+
+
+def turn_and_closest(scenario, trajectory: list, route: list[tuple[int, int]]) -> dict:
+    """Ticks from the change to the turn (the first tick at which the robot leaves ``route``, the way it would
+    have gone without the blockage) and the closest approach to the blocking box (cells) after the change."""
     from tdp.world import box_distance
 
     box = scenario.obstacles[scenario.blocking]
-    approach = [box_distance(cell, box.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
+    approach = [box_distance(tuple(cell), box.footprint(tick)) for tick, cell in enumerate(trajectory)
                 if tick >= scenario.change_tick and box.present(tick)]
-    closest = min(approach) if approach else math.nan
-    trajectory = record["trajectory"]
     turn = next((t for t in range(scenario.change_tick, len(trajectory))
-                 if t >= len(route) or trajectory[t] != route[t]), len(trajectory))
-    per_tick = timing_summary([sum(r.timings.values()) for r in record["results"]])
-    return {"reached": record["reached"], "ticks": record["ticks"], "length": record["length"],
-            "ratio": record["length"] / oracle_length, "turn_after": turn - scenario.change_tick,
-            "closest": closest, **{f"ms_{name}": value for name, value in per_tick.items()}}
+                 if t >= len(route) or tuple(trajectory[t]) != route[t]), len(trajectory))
+    return {"turn_after": turn - scenario.change_tick, "closest": min(approach) if approach else math.nan}

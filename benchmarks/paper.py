@@ -1,53 +1,53 @@
 """The paper's section 5.2 on sudden-blockage: paths and time per tick as the number of accelerating nodes grows
 (Figs. 11-12), as the DP updates per move grow (Figs. 13-14), and as the vision DmaxQ grows (Fig. 15).
 
-    python -m benchmarks.paper [--quick]
+    python -m benchmarks.paper [--quick] [--workers N] [--resume]
 
-One figure of paths per sweep, as in the paper, plus the curves (ratio to the oracle, turn, time per tick).
-Every run is grid-level and warm (a full episode runs first; Navigator.setup() compiles every kernel).
+A sweep spec (``benchmarks/specs/paper.yaml``) run through :mod:`tdp.sweep`; its tables and ratio figure land in
+``results/sweeps/paper/``. Serial unless ``--workers`` is given: the time per tick is part of the result, and
+episodes running side by side would share the cores. One figure of paths per sweep, as in the paper, plus the
+curves (ratio to the oracle, turn, time per tick). Every run is warm (Navigator.setup() compiles every kernel).
 """
 from __future__ import annotations
-
 
 import numpy as np
 
 import tdp
-from benchmarks.common import (RESULTS, blockage_metrics, machine, print_table, quick_parser, run_navigator,
+from benchmarks.common import (RESULTS, machine, print_table, run_spec, sweep_parser, turn_and_closest,
                                unblocked_route, write_json)
-from tdp.simulate import oracle_run
 
+#: The paper's three sweeps: the field swept, its label, and the values the other two hold meanwhile.
 SWEEPS = {
-    "nodes": ("number of accelerating nodes", [4, 9, 16, 25, 36, 64], lambda v: {"nodes": v, "updates_per_move": 1}),
-    "updates": ("DP updates per move (K)", [1, 2, 4, 8, 16], lambda v: {"updates_per_move": v}),
-    "vision": ("vision DmaxQ / spacing", [0.6, 1.2, 1.6, 2.5, 4.0, 8.0],
-               lambda v: {"vision": v, "updates_per_move": 1}),
+    "nodes": ("nodes", "number of accelerating nodes", {"updates_per_move": 1, "vision": 2.5}),
+    "updates": ("updates_per_move", "DP updates per move (K)", {"nodes": 25, "vision": 2.5}),
+    "vision": ("vision", "vision DmaxQ / spacing", {"nodes": 25, "updates_per_move": 1}),
 }
-QUICK = {"nodes": [9, 25], "updates": [1, 4], "vision": [0.6, 2.5]}
+_ROUTES: dict[str, list] = {}
 
 
-def sweep(name: str, values: list, scenario, oracle_length: float, route) -> list[dict]:
-    label, _, options = SWEEPS[name]
-    rows = []
-    for value in values:
-        config = tdp.NavigatorConfig(**options(value))
-        record, navigator = run_navigator(scenario, config)
-        detections = sum(d.relevant for r in record["results"] for d in r.detections)
-        rows.append({"sweep": name, "value": value, "nodes_placed": len(navigator.nodes), "detections": detections,
-                     "trajectory": record["trajectory"], "modes": record["modes"],
-                     **blockage_metrics(scenario, record, oracle_length, route)})
-        r = rows[-1]
-        print(f"  {label} = {value}: ratio {r['ratio']:.3f}, turn +{r['turn_after']}, {detections} relevant "
-              f"detections, {r['ms_mean']:.2f} ms/tick", flush=True)
-    return rows
+def turn_metrics(scenario: tdp.Scenario, record: dict, planner, config: tdp.NavigatorConfig) -> dict:
+    """Sweep metric (the spec's ``metrics``): ticks from the change to the turn, the closest approach to the
+    blocking box, and the trajectory for the path figures."""
+    if scenario.name not in _ROUTES:
+        _ROUTES[scenario.name] = unblocked_route(scenario)
+    return {**turn_and_closest(scenario, record["trajectory"], _ROUTES[scenario.name]),
+            "trajectory": [list(cell) for cell in record["trajectory"]]}
 
 
-def path_figure(name: str, rows: list[dict], scenario, oracle, path) -> None:
-    from tdp.plot import pyplot, save_figure
+def sweep_rows(name: str, rows: list[dict], table: list[dict]) -> list[dict]:
+    """The accelerating runs of one of the paper's sweeps by increasing value: the tidy table's columns, the
+    swept ``value`` and the journal's trajectory."""
+    field, _, fixed = SWEEPS[name]
+    mine = [{**t, "sweep": name, "value": r["config"][field], "trajectory": r["trajectory"]}
+            for r, t in zip(rows, table)
+            if r["planner"] == "accelerating" and all(r["config"][k] == v for k, v in fixed.items())]
+    return sorted(mine, key=lambda r: r["value"])
+
+
+def path_figure(name: str, rows: list[dict], scenario, oracle: dict, path) -> None:
+    from tdp.plot import draw_map, pyplot, save_figure
 
     plt = pyplot()
-
-    from tdp.plot import draw_map
-
     fig, ax = plt.subplots(figsize=(6.5, 6.8))
     draw_map(ax, scenario.occupancy(scenario.change_tick))
     trajectory = np.array(oracle["trajectory"])
@@ -58,7 +58,7 @@ def path_figure(name: str, rows: list[dict], scenario, oracle, path) -> None:
         ax.plot(t[:, 1], t[:, 0], "-", color=colour, lw=1.6, label=f"{row['value']} (ratio {row['ratio']:.2f})")
         turn = min(scenario.change_tick + row["turn_after"], len(t) - 1)
         ax.plot(t[turn, 1], t[turn, 0], "o", color=colour, ms=5)
-    ax.set_title(f"sudden-blockage: paths for increasing {SWEEPS[name][0]} (dots: turn A)", fontsize=9)
+    ax.set_title(f"sudden-blockage: paths for increasing {SWEEPS[name][1]} (dots: turn A)", fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     save_figure(fig, path)
 
@@ -67,9 +67,8 @@ def curves_figure(rows: list[dict], path) -> None:
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
-
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
-    for ax, (name, (label, _, _)) in zip(axes, SWEEPS.items()):
+    for ax, (name, (_, label, _)) in zip(axes, SWEEPS.items()):
         mine = [r for r in rows if r["sweep"] == name]
         values = [r["value"] for r in mine]
         ax.plot(values, [r["ms_mean"] for r in mine], "o-", color="tab:blue", label="ms per tick (mean)")
@@ -84,30 +83,28 @@ def curves_figure(rows: list[dict], path) -> None:
 
 
 def main() -> None:
-    parser = quick_parser(__doc__)
-    args = parser.parse_args()
+    args = sweep_parser(__doc__, "none: serially").parse_args()
+    spec, rows, table = run_spec("paper", args, serial=True)
     scenario = tdp.scenarios.get("sudden-blockage")
-    route = unblocked_route(scenario)
-    oracle = oracle_run(scenario, tdp.NavigatorConfig(), scenario.max_ticks)
-    plain, _ = run_navigator(scenario, tdp.NavigatorConfig(accelerating=False, updates_per_move=1))
-    run_navigator(scenario, tdp.NavigatorConfig(updates_per_move=1))  # warm-up: caches (setup() compiles the kernels)
-    baseline = blockage_metrics(scenario, plain, oracle["length"], route)
+    oracle = next(r for r in rows if r["planner"] == "oracle")
+    baseline = next(t for t in table if t["planner"] == "plain-dp")
     print(f"  plain DP, K = 1: ratio {baseline['ratio']:.3f}")
     suffix = "-quick" if args.quick else ""
-    rows = []
+    swept = []
     for name in SWEEPS:
-        mine = sweep(name, QUICK[name] if args.quick else SWEEPS[name][1], scenario, oracle["length"], route)
+        mine = sweep_rows(name, rows, table)
         path_figure(name, mine, scenario, oracle, RESULTS / f"paper-{name}{suffix}.png")
-        rows += mine
+        swept += mine
     print_table(["sweep", "value", "nodes", "relevant detections", "ratio", "turn after", "closest",
                  "ms/tick median", "mean", "p95", "max"],
-                [[r["sweep"], str(r["value"]), str(r["nodes_placed"]), str(r["detections"]), f"{r['ratio']:.3f}",
-                  str(r["turn_after"]), f"{r['closest']:.1f}", f"{r['ms_median']:.2f}", f"{r['ms_mean']:.2f}",
-                  f"{r['ms_p95']:.2f}", f"{r['ms_max']:.2f}"] for r in rows])
-    curves_figure(rows, RESULTS / f"paper-curves{suffix}.png")
-    summary = [{k: v for k, v in r.items() if k not in ("trajectory", "modes")} for r in rows]
-    path = write_json(f"paper{suffix}", {"machine": machine(), "plain_dp_k1": baseline, "rows": summary})
-    print(f"wrote {path} and the figures paper-*{suffix}.png")
+                [[r["sweep"], str(r["value"]), str(r["nodes_placed"]), str(r["relevant_detections"]),
+                  f"{r['ratio']:.3f}", str(r["turn_after"]), f"{r['closest']:.1f}", f"{r['ms_median']:.2f}",
+                  f"{r['ms_mean']:.2f}", f"{r['ms_p95']:.2f}", f"{r['ms_max']:.2f}"] for r in swept])
+    curves_figure(swept, RESULTS / f"paper-curves{suffix}.png")
+    summary = [{k: v for k, v in r.items() if k != "trajectory"} for r in swept]
+    path = write_json(f"paper{suffix}", {"machine": machine(), "spec": spec.name, "plain_dp_k1": baseline,
+                                         "rows": summary})
+    print(f"wrote {path}, the figures paper-*{suffix}.png and results/sweeps/{spec.name}/")
 
 
 if __name__ == "__main__":

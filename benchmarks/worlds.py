@@ -1,7 +1,9 @@
 """Random dynamic worlds nobody tuned for: accelerating nodes against plain DP, D* Lite and the oracle.
 
-    python -m benchmarks.worlds [--quick] [--seeds N] [--first-seed S] [--sizes 100 200] [--dstar-max-size 100]
+    python -m benchmarks.worlds [--quick] [--workers N] [--resume]
 
+A sweep spec (``benchmarks/specs/worlds.yaml``; edit it for other seeds, sizes or families) run through
+:mod:`tdp.sweep` on a local Dask cluster; its tables and ratio figure land in ``results/sweeps/worlds/``.
 Six seeded families (``tdp.random_worlds``) at 100 x 100 and 200 x 200; accelerating nodes and plain DP at K = 1
 and 4 (DP iterations per move); D* Lite (plain Python, same graph) and the oracle (exact distances every tick)
 once per world. Per family, K and planner: worlds, reached %, collisions, hits (a box drove onto the robot), mean
@@ -17,20 +19,17 @@ a pair within DmaxQ iterations, and the test looks J iterations back).
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.baselines.dstar_lite import DStarLite
-from benchmarks.common import machine, print_table, quick_parser, save_results, write_json
+from benchmarks.common import print_table, run_spec, save_results, sweep_parser
 from benchmarks.reference_graph import grid_graph
-from tdp.contract import timing_summary
-from tdp.random_worlds import CUTTING, FAMILIES, make_world
-from tdp.simulate import oracle_run, run_planner
+from tdp.random_worlds import CUTTING
 
-KS = (1, 4)
+#: The sweep's planners as the tables name them.
+LABELS = {"accelerating": "accelerating", "plain-dp": "plain DP", "dstar-lite": "D* Lite", "oracle": "oracle"}
 
 
 class PairTruth:
@@ -81,61 +80,36 @@ def waits_with_a_move(scenario: tdp.Scenario, record: dict, config: tdp.Navigato
     return count
 
 
-def run_world(family: str, size: int, seed: int, dstar: bool, options: dict | None = None) -> list[dict]:
-    """Every planner on one world: one row each. ``options`` are NavigatorConfig fields for accelerating nodes."""
-    scenario = make_world(family, size, seed)
-    base = {"family": family, "size": size, "seed": seed}
-    oracle = oracle_run(scenario, tdp.NavigatorConfig(), scenario.max_ticks)
-    rows = [{**base, "planner": "oracle", "k": None, **_metrics(oracle, oracle["length"])}]
-    if dstar:
-        planner = DStarLite(scenario.occupancy(0), scenario.start, scenario.goal)
-        record = run_planner(scenario, planner, tdp.NavigatorConfig(), scenario.max_ticks)
-        rows.append({**base, "planner": "D* Lite", "k": None, **_metrics(record, oracle["length"])})
-    for k in KS:
-        for accelerating in (True, False):
-            config = tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=k,
-                                         **(options or {} if accelerating else {}))
-            navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
-            navigator.setup()
-            record = run_planner(scenario, navigator, config, scenario.max_ticks)
-            row = {**base, "planner": "accelerating" if accelerating else "plain DP", "k": k,
-                   **_metrics(record, oracle["length"]),
-                   "stuck_waits": waits_with_a_move(scenario, record, config)}
-            if accelerating:
-                row.update(_detections(scenario, record, navigator, config))
-            rows.append(row)
-    return rows
-
-
-def _metrics(record: dict, oracle_length: float) -> dict:
-    per_tick = timing_summary([sum(r.timings.values()) for r in record["results"]])
-    return {"reached": bool(record["reached"]), "ticks": record["ticks"], "length": record["length"],
-            "ratio": record["length"] / oracle_length if record["reached"] and oracle_length > 0 else math.nan,
-            "collisions": record["collisions"], "hits": record["hits"],
-            "waits": sum(mode == "wait" for mode in record["modes"]), "ms_median": per_tick["median"]}
-
-
-def _detections(scenario: tdp.Scenario, record: dict, navigator: tdp.Navigator, config) -> dict:
+def truth_metrics(scenario: tdp.Scenario, record: dict, planner, config: tdp.NavigatorConfig) -> dict:
+    """Sweep metric (the spec's ``metrics``): for the navigator, the waits that had a legal move
+    (``stuck_waits``); with accelerating nodes, the detections and how many of them the exact pair distances
+    justify."""
+    if not isinstance(planner, tdp.Navigator):
+        return {}
     found = [(tick, d.pair) for tick, result in enumerate(record["results"], start=1) for d in result.detections]
-    if not found:
-        return {"detections": 0, "justified": 0}
-    truth = PairTruth(scenario, navigator.nodes, navigator.dmax_q + config.rise + 1)
-    lookback = math.ceil((config.detect_window + navigator.dmax_q) / config.updates_per_move) + 1
-    justified = sum(truth.justified(tick, pair, lookback, config.rise) for tick, pair in found)
-    return {"detections": len(found), "justified": justified}
+    row = {"stuck_waits": waits_with_a_move(scenario, record, config)}
+    if config.accelerating and found:
+        truth = PairTruth(scenario, planner.nodes, planner.dmax_q + config.rise + 1)
+        lookback = math.ceil((config.detect_window + planner.dmax_q) / config.updates_per_move) + 1
+        row["justified"] = sum(truth.justified(tick, pair, lookback, config.rise) for tick, pair in found)
+    elif config.accelerating:
+        row["justified"] = 0
+    return row
 
 
-def summarise(rows: list[dict]) -> list[dict]:
-    """Per family, K and planner (D* Lite and the oracle repeated under each K). Mean and max ratios are over the
-    worlds every planner that ran there reached; D* Lite may have run on some sizes only."""
+def summarise(table: list[dict]) -> list[dict]:
+    """Per family, K and planner (D* Lite and the oracle repeated under each K) from the sweep's tidy table. Mean
+    and max ratios are over the worlds every planner that ran there reached; D* Lite may have run on some sizes
+    only."""
     out = []
-    for family in dict.fromkeys(r["family"] for r in rows):
-        mine = [r for r in rows if r["family"] == family]
+    ks = sorted({r["updates_per_move"] for r in table if r["updates_per_move"] is not None})
+    for family in dict.fromkeys(r["group"] for r in table):
+        mine = [r for r in table if r["group"] == family]
         worlds = sorted({(r["size"], r["seed"]) for r in mine})
-        for k in KS:
-            runs_of = {planner: {(r["size"], r["seed"]): r for r in mine
-                                 if r["planner"] == planner and r["k"] in (k, None)}
-                       for planner in ("accelerating", "plain DP", "D* Lite", "oracle")}
+        for k in ks:
+            runs_of = {label: {(r["size"], r["seed"]): r for r in mine
+                               if r["planner"] == planner and r["updates_per_move"] in (k, None)}
+                       for planner, label in LABELS.items()}
             runs_of = {planner: runs for planner, runs in runs_of.items() if runs}
             everyone = [w for w in worlds if all(runs[w]["reached"] for runs in runs_of.values() if w in runs)]
             for planner, runs in runs_of.items():
@@ -165,8 +139,9 @@ def figure(summary: list[dict], path) -> None:
 
     plt = pyplot()
     families = list(dict.fromkeys(s["family"] for s in summary))
-    fig, axes = plt.subplots(1, len(KS), figsize=(6 * len(KS), 4), squeeze=False)
-    for ax, k in zip(axes[0], KS):
+    ks = list(dict.fromkeys(s["k"] for s in summary))
+    fig, axes = plt.subplots(1, len(ks), figsize=(6 * len(ks), 4), squeeze=False)
+    for ax, k in zip(axes[0], ks):
         planners = list(dict.fromkeys(s["planner"] for s in summary))
         width = 0.8 / len(planners)
         for j, planner in enumerate(planners):
@@ -183,31 +158,9 @@ def figure(summary: list[dict], path) -> None:
 
 
 def main() -> None:
-    parser = quick_parser(__doc__)
-    parser.add_argument("--seeds", type=int, default=10, help="worlds per family and size (default 10)")
-    parser.add_argument("--first-seed", type=int, default=0, help="the first seed (default 0)")
-    parser.add_argument("--sizes", type=int, nargs="+", default=[100, 200])
-    parser.add_argument("--families", nargs="+", default=list(FAMILIES), choices=FAMILIES)
-    parser.add_argument("--dstar-max-size", type=int, default=100,
-                        help="run D* Lite (plain Python: minutes per world with a moving target at 200 x 200) on maps "
-                             "up to this side (default 100; 0: never)")
-    args = parser.parse_args()
-    seeds = range(args.first_seed, args.first_seed + (1 if args.quick else args.seeds))
-    sizes = [100] if args.quick else args.sizes
-    name = "worlds-quick" if args.quick else "worlds"
-    rows, began = [], time.perf_counter()
-    total = len(args.families) * len(sizes) * len(seeds)
-    for family in args.families:
-        for size in sizes:
-            for seed in seeds:
-                rows += run_world(family, size, seed, dstar=size <= args.dstar_max_size)
-                write_json(name, {"machine": machine(), "partial": True, "rows": rows})  # a crash loses nothing
-                done = len({(r["family"], r["size"], r["seed"]) for r in rows})
-                acc = [r for r in rows[-5:] if r["planner"] == "accelerating"]
-                print(f"  [{done}/{total}, {time.perf_counter() - began:.0f} s] {family}-{size}-{seed}: "
-                      + ", ".join(f"K={r['k']} reached {r['reached']} ratio {r['ratio']:.3f}" for r in acc),
-                      flush=True)
-    summary = summarise(rows)
+    args = sweep_parser(__doc__, "one per core").parse_args()
+    spec, _, table = run_spec("worlds", args, serial=False)
+    summary = summarise(table)
     print_table(["family", "K", "planner", "worlds", "reached %", "coll.", "hits", "mean ratio", "max ratio",
                  "worse than DP", "detections", "justified", "waits (with a move)", "ms/tick"],
                 [[s["family"], str(s["k"]), s["planner"], str(s["worlds"]), f"{s['reached_pct']:.0f}",
@@ -215,8 +168,8 @@ def main() -> None:
                   str(s.get("worse_than_dp", "-")), str(s.get("detections", "-")),
                   f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-",
                   f"{s['waits']} ({s['stuck_waits']})", f"{s['ms_median']:.2f}"] for s in summary])
-    save_results(name, {"cutting_families": list(CUTTING), "summary": summary, "rows": rows},
-                 lambda png: figure(summary, png))
+    save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", "cutting_families": list(CUTTING),
+                             "summary": summary, "rows": table}, lambda png: figure(summary, png))
 
 
 if __name__ == "__main__":

@@ -211,7 +211,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     try:
         run = _Run(scenario, config, sim, client)
         camera = TopCamera(client, run.grid) if frames is not None else None
-        max_ticks = scenario.max_ticks or 4 * sum(scenario.grid.shape)
+        max_ticks = scenario.tick_limit
         tick = 0
         began = time.perf_counter()
         while tick < max_ticks and not run.reached():

@@ -3,6 +3,8 @@
     python -m tdp list                                   the named scenarios
     python -m tdp run --scenario NAME | --world FILE [options] --out DIR   an episode: metrics.json and a figure
     python -m tdp plan MAP --start R C --goal R C [--out DIR]  shortest path on a map file
+    python -m tdp sweep SPEC.yaml [--out DIR] [--serial | --scheduler ADDRESS | --workers N]
+                                                         many episodes: tables and a figure (README "Sweeps")
 """
 from __future__ import annotations
 
@@ -81,6 +83,37 @@ def plan(args: argparse.Namespace) -> int:
     return 0
 
 
+def sweep(args: argparse.Namespace) -> int:
+    """Run a sweep spec's episodes not yet done, then write its tables and figure into --out."""
+    from tdp.cli import output_folder
+    from tdp.sweep import JOURNAL, Journal, load_spec, run_sweep, write_report
+
+    spec = load_spec(args.spec)
+    if args.workers is not None and (args.workers < 1 or args.serial or args.scheduler):
+        raise ValueError(f"--workers {args.workers}: a positive number of local workers, without --serial or "
+                         "--scheduler")
+    out = output_folder(args.out or f"sweep-{spec.name}")
+    episodes = spec.episodes()
+    where = "serially" if args.serial else f"on {args.scheduler or 'a local cluster'}"
+    print(f"sweep {spec.name}: {len(episodes)} episodes on {len(spec.worlds)} worlds, {where}; results in {out}",
+          flush=True)
+    try:
+        rows = run_sweep(spec, out, args.scheduler, args.workers, args.serial)
+    except KeyboardInterrupt:
+        rows = Journal(out / JOURNAL).rows_of(episodes)
+        write_report(spec, rows, out)
+        print(f"interrupted: {len(rows)} of {len(episodes)} episodes are saved in {out / JOURNAL}; the same command "
+              "finishes the rest", file=sys.stderr)
+        return 130
+    written = write_report(spec, rows, out)
+    print(f"{len(rows)} of {len(episodes)} episodes done; wrote {', '.join(str(p) for p in written)}")
+    if len(rows) < len(episodes):
+        print(f"{len(episodes) - len(rows)} episodes failed (their errors are in {out / JOURNAL}); the same "
+              "command retries them", file=sys.stderr)
+        return 1
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     from tdp.cli import add_world_arguments
 
@@ -113,6 +146,14 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--unknown-free", action="store_true", help="ROS maps: treat unknown cells as free")
     p.add_argument("--out", default="out", help="folder for the figure (default: out)")
     p.set_defaults(run=plan)
+    s = commands.add_parser("sweep", help="run a sweep spec: many episodes, tables and a figure")
+    s.add_argument("spec", help="a sweep spec (YAML: see the README's 'Sweeps')")
+    s.add_argument("--out", default=None, help="output folder (default: sweep-NAME); a rerun skips what it holds")
+    where = s.add_mutually_exclusive_group()
+    where.add_argument("--serial", action="store_true", help="run the episodes one after another in this process")
+    where.add_argument("--scheduler", help="address of a running Dask scheduler (default: start a local cluster)")
+    s.add_argument("--workers", type=int, default=None, help="local cluster: worker processes (default: one per core)")
+    s.set_defaults(run=sweep)
     return main
 
 

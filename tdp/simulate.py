@@ -49,7 +49,7 @@ class Episode:
         return {k: v for k, v in self.__dict__.items()}
 
 
-class _Oracle:
+class Oracle:
     """The same robot with unlimited compute: exact distances (a converged field) every tick."""
 
     def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
@@ -143,14 +143,14 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
         raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
     limit = checks.optional_integer(max_ticks, "max_ticks", 1)
     if limit is None:
-        limit = scenario.max_ticks or 4 * sum(scenario.grid.shape)
+        limit = scenario.tick_limit
     report = None
     if progress:
         def report(tick, robot):
             if tick % 25 == 0:
                 print(f"  [{scenario.name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
 
-    navigator = Navigator(_start_grid(scenario), scenario.start, scenario.goal, config)
+    navigator = Navigator(start_grid(scenario), scenario.start, scenario.goal, config)
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
     edges = navigator.node_edges()
@@ -162,11 +162,11 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
 
 def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> dict:
     """The oracle's run of ``scenario``: a dict with its ``length`` (cells), ``trajectory``, ``reached``, ``ticks``."""
-    oracle = _Oracle(_start_grid(scenario), scenario.start, scenario.goal, config)
+    oracle = Oracle(start_grid(scenario), scenario.start, scenario.goal, config)
     return run_planner(scenario, oracle, config, max_ticks)
 
 
-def _start_grid(scenario: Scenario) -> GridMap:
+def start_grid(scenario: Scenario) -> GridMap:
     """The scenario's map as it stands at tick 0 (its obstacles at their first positions)."""
     return GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
 

@@ -122,6 +122,11 @@ class Scenario:
         if self.blocking is not None and not 0 <= checks.integer(self.blocking, "blocking") < len(self.obstacles):
             raise ValueError(f"blocking must index an obstacle (0..{len(self.obstacles) - 1}), got {self.blocking}")
 
+    @property
+    def tick_limit(self) -> int:
+        """The ticks an episode may last: ``max_ticks``, or 4 (H + W) when the scenario sets none."""
+        return self.max_ticks or 4 * sum(self.grid.shape)
+
     def to_yaml(self) -> str:
         """This world as a world file (:mod:`tdp.worldfile`), in cells; :func:`tdp.load_world` reads it back."""
         from .worldfile import world_yaml

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from benchmarks.baselines.dstar_lite import DStarLite
+from tdp.dstar_lite import DStarLite
 from reference import distances_to
 
 

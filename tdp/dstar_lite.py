@@ -1,5 +1,5 @@
 """D* Lite (Koenig and Likhachev, "D* Lite", AAAI 2002; the optimised version of their Fig. 4) on tdp's grid
-graph: the same 4/8/16-neighbour moves, lengths and corner rule. Plain Python, a baseline for the benchmarks.
+graph: the same 4/8/16-neighbour moves, lengths and corner rule. Plain Python, a baseline for sweeps and benchmarks.
 
 The search runs from the goal back to the robot with the Euclidean heuristic (consistent: every move costs its
 Euclidean length). Map edits update the vertices whose edges they touch and repair the search; a moved goal
@@ -13,8 +13,8 @@ import time
 
 import numpy as np
 
-from tdp import stencil
-from tdp.contract import Mode, TickResult
+from . import stencil
+from .contract import Mode, TickResult
 
 INF = math.inf
 

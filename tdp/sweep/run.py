@@ -1,0 +1,173 @@
+"""Running a sweep: the episodes not yet in the journal, serially or on Dask distributed, each result appended to
+the journal the moment it arrives, with progress and an ETA on stderr."""
+from __future__ import annotations
+
+import json
+import logging
+import math
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Iterable, TextIO
+
+from .episode import run_episode
+from .spec import Episode, Spec
+
+JOURNAL = "episodes.jsonl"
+
+
+class Journal:
+    """The sweep's record on disk: one JSON line per finished episode, ``{"key", "row"}`` or ``{"key", "error"}``,
+    flushed and synced as it is written, so a crash, a kill or Ctrl-C loses at most the episodes still running.
+    Reading it back skips a line torn by a kill; a later line for a key replaces an earlier one (a rerun's result
+    replaces a recorded error)."""
+
+    def __init__(self, path: Path, log: TextIO = sys.stderr):
+        self.path, self.log = Path(path), log
+        self.rows: dict[str, dict] = {}
+        self.errors: dict[str, str] = {}
+        if self.path.exists():
+            self._read()
+
+    def _read(self) -> None:
+        data = self.path.read_bytes()
+        whole = data[:data.rfind(b"\n") + 1]
+        if len(whole) < len(data):  # the last line was being written when the sweep was killed
+            self.path.write_bytes(whole)
+        for line in whole.decode().splitlines():
+            try:
+                entry = json.loads(line)
+            except ValueError:
+                continue
+            if "row" in entry:
+                self.rows[entry["key"]] = entry["row"]
+                self.errors.pop(entry["key"], None)
+            elif "error" in entry:
+                self.errors[entry["key"]] = entry["error"]
+
+    def rows_of(self, episodes: list[Episode]) -> list[dict]:
+        """The rows of those of ``episodes`` that are done, in their order."""
+        return [self.rows[e.key] for e in episodes if e.key in self.rows]
+
+    def add(self, key: str, row: dict | None = None, error: str | None = None) -> None:
+        """Record an episode's row, or the error that ended it."""
+        entry = {"key": key, "row": row} if error is None else {"key": key, "error": error}
+        if error is None:
+            self.rows[key] = row
+            self.errors.pop(key, None)
+        else:
+            self.errors[key] = error
+        line = json.dumps(entry, default=_plain) + "\n"
+        try:
+            self._append(line)
+        except OSError as problem:  # keep going: the results must outlive an output problem
+            self.path = Path(tempfile.mkdtemp(prefix="tdp-sweep-")) / JOURNAL
+            print(f"warning: cannot write the journal ({problem}); writing it to {self.path} instead",
+                  file=self.log, flush=True)
+            self._append("".join(json.dumps({"key": k, "row": r}, default=_plain) + "\n"
+                                 for k, r in self.rows.items()))
+
+    def _append(self, text: str) -> None:
+        with open(self.path, "a") as file:
+            file.write(text)
+            file.flush()
+            os.fsync(file.fileno())
+
+
+def _plain(value):
+    """JSON for numpy scalars and arrays that extra metrics may return."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"cannot write {type(value).__name__} in a sweep row")
+
+
+class Progress:
+    """Lines on ``log``: episodes done of the total, elapsed time and an ETA from this run's pace; errors always,
+    other results at most every ``every_s`` seconds."""
+
+    def __init__(self, total: int, done: int, log: TextIO, every_s: float = 2.0):
+        self.total, self.done, self.log, self.every_s = total, done, log, every_s
+        self.began = self.last = time.perf_counter()
+        self.finished = self.failed = 0
+        if done:
+            print(f"sweep: {done} of {total} episodes done before, skipped", file=log, flush=True)
+
+    def __call__(self, episode: Episode, error: str | None) -> None:
+        self.finished += 1
+        self.failed += error is not None
+        now = time.perf_counter()
+        if error is None and now - self.last < self.every_s and self.done + self.finished < self.total:
+            return
+        self.last = now
+        elapsed = now - self.began
+        left = (self.total - self.done - self.finished) * elapsed / self.finished
+        what = f"{episode.world.coords['world']} {episode.planner}"
+        status = f"FAILED: {error.splitlines()[-1] if error else ''}" if error else "ok"
+        print(f"sweep: {self.done + self.finished}/{self.total} episodes, {_clock(elapsed)} elapsed, ETA "
+              f"{_clock(left)}{f', {self.failed} failed' if self.failed else ''} ({what}: {status})",
+              file=self.log, flush=True)
+
+
+def _clock(seconds: float) -> str:
+    seconds = int(math.ceil(seconds))
+    return f"{seconds // 3600}h{seconds // 60 % 60:02d}m{seconds % 60:02d}s" if seconds >= 3600 else \
+        f"{seconds // 60}m{seconds % 60:02d}s"
+
+
+def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int | None = None,
+              serial: bool = False, log: TextIO = sys.stderr) -> list[dict]:
+    """Run every episode of ``spec`` that the journal in ``out`` does not hold yet; return all of the spec's rows
+    that are done, in the spec's order.
+
+    ``serial``: one after another in this process. Otherwise on Dask distributed: the cluster at ``scheduler``
+    (an address such as ``tcp://10.0.0.5:8786``), or a local cluster of ``workers`` processes (default: one per
+    core), each running one episode at a time with cores // workers Taichi threads.
+    """
+    journal = Journal(Path(out) / JOURNAL, log)
+    episodes = spec.episodes()
+    todo = [e for e in episodes if e.key not in journal.rows]
+    progress = Progress(len(episodes), len(episodes) - len(todo), log)
+    if todo:
+        for episode, row, error in _serially(todo) if serial else _on_dask(todo, scheduler, workers):
+            journal.add(episode.key, row, error)
+            progress(episode, error)
+    return journal.rows_of(episodes)
+
+
+def _serially(episodes: list[Episode]) -> Iterable[tuple[Episode, dict | None, str | None]]:
+    for episode in episodes:
+        try:
+            yield episode, run_episode(episode), None
+        except Exception as error:  # one bad episode must not end a sweep of thousands; it is recorded
+            yield episode, None, f"{type(error).__name__}: {error}"
+
+
+def _on_dask(episodes: list[Episode], scheduler: str | None,
+             workers: int | None) -> Iterable[tuple[Episode, dict | None, str | None]]:
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ValueError("sweeps on a cluster need Dask: pip install 'dask[distributed]' (or run with --serial)") \
+            from None
+    cluster = None
+    if scheduler is None:
+        cores = os.cpu_count() or 1
+        count = workers or cores
+        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True, dashboard_address=None,
+                               silence_logs=logging.ERROR, env={"TDP_THREADS": str(max(1, cores // count))})
+    try:
+        with Client(cluster or scheduler) as client:
+            futures = client.map(run_episode, episodes, key=[f"tdp-episode-{e.key}" for e in episodes])
+            of = dict(zip((f.key for f in futures), episodes))
+            for future in as_completed(futures):
+                if future.status == "error":
+                    error = future.exception()
+                    yield of[future.key], None, f"{type(error).__name__}: {error}"
+                else:
+                    yield of[future.key], future.result(), None
+                future.release()
+    finally:
+        if cluster is not None:
+            cluster.close()

@@ -1,0 +1,176 @@
+"""Sweeps: specs checked up front, episodes expanded and keyed, results journalled and resumed after a kill, the
+same table serially and on a real local Dask cluster, ratios against the oracle."""
+import csv
+import io
+import json
+import math
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tdp.sweep import JOURNAL, TIMED, Journal, load_spec, run_sweep, write_report
+
+ROOT = Path(__file__).resolve().parents[1]
+
+SMALL = """
+name: small
+worlds:
+  - family: crossing
+    size: 60
+    seeds: {first: 0, count: 2}
+  - scenario: sudden-blockage
+planners:
+  - planner: accelerating
+    updates_per_move: [1, 4]
+  - planner: plain-dp
+    updates_per_move: 4
+  - planner: dstar-lite
+    max_size: 60
+"""
+
+
+def spec_file(tmp_path: Path, text: str, name: str = "spec.yaml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def untimed(path: Path) -> list[dict]:
+    """episodes.csv without the measured times (the only columns that may differ between runs)."""
+    with open(path) as file:
+        return [{k: v for k, v in row.items() if k not in TIMED} for row in csv.DictReader(file)]
+
+
+def test_episodes_expand_the_grid_with_one_oracle_per_world_and_stencil(tmp_path):
+    spec = load_spec(spec_file(tmp_path, SMALL))
+    episodes = spec.episodes()
+    per_world = {}
+    for e in episodes:
+        per_world.setdefault(e.world.coords["world"], []).append(e.planner)
+    assert per_world == {"crossing-60-0": ["oracle", "accelerating", "accelerating", "plain-dp", "dstar-lite"],
+                         "crossing-60-1": ["oracle", "accelerating", "accelerating", "plain-dp", "dstar-lite"],
+                         "sudden-blockage": ["oracle", "accelerating", "accelerating", "plain-dp"]}  # max_size 60
+    assert len({e.key for e in episodes}) == len(episodes) == 14
+    assert load_spec(spec_file(tmp_path, SMALL)).episodes()[3].key == episodes[3].key  # stable
+    assert spec.columns == ("updates_per_move",)
+    two_stencils = SMALL.replace("  - planner: dstar-lite\n    max_size: 60\n",
+                                 "  - planner: dstar-lite\n    neighbourhood: 8\n")
+    planners = [e.planner for e in load_spec(spec_file(tmp_path, two_stencils)).episodes()
+                if e.world.coords["world"] == "sudden-blockage"]
+    assert planners.count("oracle") == 2
+
+
+def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
+    import tdp
+
+    world = tmp_path / "w.yaml"
+    world.write_text(tdp.scenarios.get("static").to_yaml())
+    text = "worlds: [{world: w.yaml}]\nplanners: [{planner: plain-dp}]\n"
+    before = {e.key for e in load_spec(spec_file(tmp_path, text)).episodes()}
+    world.write_text(world.read_text().replace("max_ticks: 400", "max_ticks: 399"))
+    after = {e.key for e in load_spec(spec_file(tmp_path, text)).episodes()}
+    assert before and not before & after
+
+
+@pytest.mark.parametrize("text, words", [
+    ("worlds: [{family: rooms}]", "'planners'"),
+    ("worlds: [{family: hallways}]\nplanners: [{planner: oracle}]", "unknown family 'hallways'"),
+    ("worlds: [{family: rooms, seeds: -1}]\nplanners: [{planner: oracle}]", "worlds[0].seeds"),
+    ("worlds: [{family: rooms, size: 20}]\nplanners: [{planner: oracle}]", "worlds[0].size"),
+    ("worlds: [{family: rooms, scenario: static}]\nplanners: [{planner: oracle}]", "exactly one of"),
+    ("worlds: [{world: missing.yaml}]\nplanners: [{planner: oracle}]", "missing.yaml"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: plain-dp, nodes: 9}]", "'nodes' is not one of"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: accelerating, nodes: [9, 0]}]", "nodes"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: accelerating, speed: 2}]", "'speed'"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: astar}]", "'planner' is one of"),
+    ("worlds: [{scenario: static}]\ncommon: {vision: 2, colour: red}\nplanners: [{planner: oracle}]", "'colour'"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: oracle}]\nmetrics: [no.such:thing]", "no.such:thing"),
+    ("worlds: [{map: m.txt, start: [1, 1], goal: [1, 2]}]\nplanners: [{planner: oracle}]", "m.txt"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: oracle}]\nextra: 1", "unknown key 'extra'"),
+    ("worlds: [{scenario: static\n", "not valid YAML"),
+])
+def test_a_bad_spec_is_a_value_error_naming_the_file_and_the_entry(tmp_path, text, words):
+    path = spec_file(tmp_path, text)
+    with pytest.raises(ValueError, match="sweep spec") as caught:
+        load_spec(path)
+    assert words in str(caught.value) and str(path) in str(caught.value)
+
+
+def test_bad_spec_on_the_command_line_is_one_error_line(tmp_path):
+    done = subprocess.run([sys.executable, "-m", "tdp", "sweep", str(tmp_path / "none.yaml")], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2 and done.stderr.startswith("error: sweep spec") and "Traceback" not in done.stderr
+
+
+def test_journal_skips_a_torn_line_and_a_result_replaces_an_error(tmp_path):
+    path = tmp_path / JOURNAL
+    path.write_text(json.dumps({"key": "a", "error": "boom"}) + "\n" + json.dumps({"key": "b", "row": {"x": 1}})
+                    + "\n" + '{"key": "c", "ro')
+    journal = Journal(path)
+    assert journal.rows == {"b": {"x": 1}} and journal.errors == {"a": "boom"}
+    assert path.read_text().endswith("}\n")  # the torn line is cut off, so the next line starts cleanly
+    journal.add("a", {"x": 2})
+    again = Journal(path)
+    assert again.rows == {"b": {"x": 1}, "a": {"x": 2}} and not again.errors
+
+
+def test_ratios_are_lengths_over_the_oracle_of_the_same_world(tmp_path):
+    spec = load_spec(spec_file(tmp_path, SMALL))
+    rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())
+    assert len(rows) == len(spec.episodes())
+    write_report(spec, rows, tmp_path)
+    with open(tmp_path / "episodes.csv") as file:
+        table = list(csv.DictReader(file))
+    oracle = {r["world"]: float(r["length"]) for r in rows if r["planner"] == "oracle"}
+    for row in table:
+        expected = float(row["length"]) / oracle[row["world"]] if row["reached"] == "True" else math.nan
+        assert float(row["ratio"]) == pytest.approx(expected, nan_ok=True)
+    blockage = {r["planner"]: float(r["ratio"]) for r in table if r["world"] == "sudden-blockage"
+                and r["updates_per_move"] in ("", "4")}
+    assert blockage["oracle"] == 1.0 and blockage["plain-dp"] > 1.05 > blockage["accelerating"]
+    with open(tmp_path / "summary.csv") as file:
+        summary = list(csv.DictReader(file))
+    assert {(s["group"], s["planner"], s["updates_per_move"]) for s in summary} == {
+        (r["group"], r["planner"], r["updates_per_move"]) for r in table}
+    assert (tmp_path / "ratio.png").stat().st_size > 1000
+
+
+def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
+    spec = spec_file(tmp_path, SMALL)
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "tdp", "sweep", str(spec), "--serial", "--out", str(out)]
+    process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    journal = out / JOURNAL
+    deadline = time.monotonic() + 240
+    while time.monotonic() < deadline and process.poll() is None:
+        if journal.exists() and journal.read_text().count("\n") >= 3:
+            break
+        time.sleep(0.05)
+    process.send_signal(signal.SIGKILL)
+    process.wait()
+    before = journal.read_text().splitlines()
+    total = len(load_spec(spec).episodes())
+    assert 3 <= len(before) < total, "the sweep was not caught halfway"
+    done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert f"{len(before)} of {total} episodes done before, skipped" in done.stderr
+    after = journal.read_text().splitlines()
+    assert after[:len(before)] == before  # finished episodes were kept, not redone
+    keys = [json.loads(line)["key"] for line in after]
+    assert len(keys) == len(set(keys)) == total
+    assert len(untimed(out / "episodes.csv")) == total
+
+
+def test_local_dask_cluster_gives_the_serial_table(tmp_path):
+    pytest.importorskip("dask.distributed")
+    spec = load_spec(spec_file(tmp_path, SMALL))
+    serial, cluster = tmp_path / "serial", tmp_path / "cluster"
+    for out, options in ((serial, {"serial": True}), (cluster, {"workers": 2})):
+        out.mkdir()
+        write_report(spec, run_sweep(spec, out, log=io.StringIO(), **options), out)
+    assert untimed(serial / "episodes.csv") == untimed(cluster / "episodes.csv")
+    assert len(untimed(cluster / "episodes.csv")) == len(spec.episodes())
