@@ -25,6 +25,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.paper
 	$(PY) -m benchmarks.worlds
 	$(PY) -m benchmarks.budget
+	$(PY) -m benchmarks.sweep
 
 clean:
-	rm -rf $(VENV) demo-output benchmarks/results/*-quick.*
+	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick

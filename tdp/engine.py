@@ -95,14 +95,12 @@ def _broadcast(value, lanes: ti.template()):
 
 @ti.func
 def _lane(value, lane, lanes: ti.template()):
-    """Component ``lane`` of a packed value (the value itself for a scalar layer)."""
+    """Component ``lane`` (a runtime index) of a packed value (the value itself for a scalar layer)."""
     out = 0.0
     if ti.static(lanes == 0):
         out = value
     else:
-        for k in ti.static(range(lanes)):
-            if lane == k:
-                out = value[k]
+        out = value[lane]
     return out
 
 
@@ -268,7 +266,7 @@ def _stamp_cells(stamps: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=
     outside it.
     """
     for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
-        for lane in ti.static(range(max(lanes, 1))):
+        for lane in range(max(lanes, 1)):
             a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
             b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
             if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
@@ -389,7 +387,7 @@ def _gather_window_pen(grid_pen: ti.types.ndarray(ndim=3), window_pen: ti.types.
 
 
 @ti.func
-def _store(arr: ti.template(), g, i, j, lane: ti.template(), value, lanes: ti.template()):
+def _store(arr: ti.template(), g, i, j, lane, value, lanes: ti.template()):
     """Write ``value`` into component ``lane`` of arr[g, i, j] (the whole cell for a scalar layer), storing only
     that component: other lanes of the cell may be written by other threads at the same time."""
     if ti.static(lanes == 0):
@@ -405,7 +403,7 @@ def _paint(pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3), bu
     """Write changed cells' penalties into every layer that contains them (``origins``, one per lane, maps grid to
     layer coordinates of a rows x cols layer); a newly occupied cell takes its obstacle value, the cap, at once."""
     for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-        for lane in ti.static(range(max(lanes, 1))):
+        for lane in range(max(lanes, 1)):
             a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
             b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
             if 0 <= a < rows and 0 <= b < cols:
@@ -468,7 +466,7 @@ def _sample_kind(arr: ti.template(), origins: ti.template(), cells: ti.template(
     rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
     ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
     for k, g in ti.ndrange(cells.shape[0], arr.shape[0]):
-        for lane in ti.static(range(max(lanes, 1))):
+        for lane in range(max(lanes, 1)):
             layer = g * max(lanes, 1) + lane
             column = layer + ti.static(0 if lanes == 0 else 1)
             if column < out.shape[2]:
