@@ -17,6 +17,17 @@ from . import stencil
 from .contract import Mode, TickResult
 
 INF = math.inf
+#: Keys whose first components differ by less than this are ties (broken by the second component): both are sums
+#: of Euclidean lengths in different orders, so a tie in exact arithmetic can come out one rounding apart, and
+#: stopping on that rounding leaves the robot's distance stale.
+KEY_TOLERANCE = 1e-9
+
+
+def _before(key: tuple[float, float], other: tuple[float, float]) -> bool:
+    """Whether ``key`` orders before ``other``, with ties in the first component taken within KEY_TOLERANCE."""
+    if abs(key[0] - other[0]) > KEY_TOLERANCE * max(1.0, abs(other[0])):
+        return key[0] < other[0]
+    return key[1] < other[1]
 
 
 class DStarLite:
@@ -82,8 +93,8 @@ class DStarLite:
     def _compute(self) -> None:
         while True:
             key, cell = self._top()
-            start_key = self._key(self.start)
-            if cell is None or (key >= start_key and self.rhs.get(self.start, INF) == self.g.get(self.start, INF)):
+            if cell is None or (not _before(key, self._key(self.start))
+                                and self.rhs.get(self.start, INF) == self.g.get(self.start, INF)):
                 return
             self.expanded += 1
             new_key = self._key(cell)
