@@ -174,3 +174,12 @@ def test_local_dask_cluster_gives_the_serial_table(tmp_path):
         write_report(spec, run_sweep(spec, out, log=io.StringIO(), **options), out)
     assert untimed(serial / "episodes.csv") == untimed(cluster / "episodes.csv")
     assert len(untimed(cluster / "episodes.csv")) == len(spec.episodes())
+
+
+def test_sweep_runs_on_an_existing_dask_scheduler(tmp_path):
+    distributed = pytest.importorskip("dask.distributed")
+    spec = load_spec(spec_file(tmp_path, "worlds: [{family: clearing, size: 60}]\n"
+                                         "planners: [{planner: plain-dp, updates_per_move: 2}]\n"))
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
+        rows = run_sweep(spec, tmp_path, scheduler=cluster.scheduler_address, log=io.StringIO())
+    assert [r["planner"] for r in rows] == ["oracle", "plain-dp"] and all(r["reached"] for r in rows)

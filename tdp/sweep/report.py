@@ -84,8 +84,9 @@ def swept(spec: Spec, table: list[dict]) -> list[str]:
 
 
 def ratio_figure(spec: Spec, table: list[dict], path: Path) -> Path:
-    """Mean ratio to the oracle against each swept field (one panel each; a planner without the field is a dashed
-    level), a line per world group and planner; bars per group and planner when nothing is swept."""
+    """Mean ratio to the oracle against each swept field (one panel each; a planner without the field is a level
+    line in its own style, its mean over all its episodes), a line per world group and planner; bars per group
+    and planner when nothing is swept."""
     from ..plot import pyplot, save_figure
 
     plt = pyplot()
@@ -107,7 +108,8 @@ def ratio_figure(spec: Spec, table: list[dict], path: Path) -> Path:
                     ax.bar(g + p * 0.8 / len(planners), np.mean([r["ratio"] for r in mine]), 0.8 / len(planners),
                            color=colours[group], alpha=1 - 0.25 * p, label=label)
                 elif mine[0][field] is None:
-                    ax.axhline(np.mean([r["ratio"] for r in mine]), color=colours[group], ls=":", lw=1, label=label)
+                    ax.axhline(np.mean([r["ratio"] for r in mine]), color=colours[group], ls=styles[planner][1:],
+                               lw=1, alpha=0.7, label=f"{label} (all)")
                 else:
                     values = sorted({r[field] for r in mine})
                     means = [np.mean([r["ratio"] for r in mine if r[field] == v]) for v in values]
@@ -118,7 +120,7 @@ def ratio_figure(spec: Spec, table: list[dict], path: Path) -> Path:
             ax.set_xticklabels(groups, rotation=20, fontsize=8)
         ax.set_ylabel("mean path length / oracle")
         ax.grid(alpha=0.3)
-    axes[0][-1].legend(fontsize=6, loc="best")
+        ax.legend(fontsize=6, loc="best")
     fig.suptitle(f"sweep {spec.name}: {len(table)} episodes", fontsize=10)
     return save_figure(fig, path)
 
