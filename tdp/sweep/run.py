@@ -41,11 +41,15 @@ class Journal:
                 entry = json.loads(line)
             except ValueError:
                 continue
-            if "row" in entry:
-                self.rows[entry["key"]] = entry["row"]
-                self.errors.pop(entry["key"], None)
-            elif "error" in entry:
-                self.errors[entry["key"]] = entry["error"]
+            if isinstance(entry, dict) and "key" in entry and ("row" in entry or "error" in entry):
+                self._take(entry)
+
+    def _take(self, entry: dict) -> None:
+        if "row" in entry:
+            self.rows[entry["key"]] = entry["row"]
+            self.errors.pop(entry["key"], None)
+        else:
+            self.errors[entry["key"]] = entry["error"]
 
     def rows_of(self, episodes: list[Episode]) -> list[dict]:
         """The rows of those of ``episodes`` that are done, in their order."""
@@ -54,11 +58,7 @@ class Journal:
     def add(self, key: str, row: dict | None = None, error: str | None = None) -> None:
         """Record an episode's row, or the error that ended it."""
         entry = {"key": key, "row": row} if error is None else {"key": key, "error": error}
-        if error is None:
-            self.rows[key] = row
-            self.errors.pop(key, None)
-        else:
-            self.errors[key] = error
+        self._take(entry)
         line = json.dumps(entry, default=_plain) + "\n"
         try:
             self._append(line)
