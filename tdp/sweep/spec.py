@@ -98,10 +98,6 @@ class Episode:
         text = json.dumps([self.world.recipe, self.planner, self.config, list(self.metrics)], sort_keys=True)
         return hashlib.sha1(text.encode()).hexdigest()[:16]
 
-    @property
-    def stencil(self) -> tuple:
-        return tuple(self.config[name] for name in STENCIL_FIELDS)
-
 
 @dataclass(frozen=True)
 class Spec:
@@ -223,9 +219,9 @@ def _worlds(entry, where: str, folder: Path) -> list[World]:
                 for family in families for size in sizes for seed in _seeds(entry.get("seeds", 0), where)]
     if kind == "scenario":
         _only(entry, ("scenario",), where)
-        tdp.scenarios.path(entry["scenario"])
         name = entry["scenario"]
-        return [World({"kind": kind, "scenario": name}, {"world": name, "group": name, "size": 100, "seed": None})]
+        size = max(tdp.scenarios.get(name).grid.shape)
+        return [World({"kind": kind, "scenario": name}, {"world": name, "group": name, "size": size, "seed": None})]
     if kind == "world":
         _only(entry, ("world",), where)
         file, digest = _file(entry["world"], where, folder)
