@@ -12,14 +12,27 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's candidate is
   ``D[Z] + |V - Z| + pen[crossed cells]``.
 
-Iterations: each kind of layer (goal, node windows) is split into 8 x 8 tiles, relaxed only when active (their
-inputs changed in the previous iteration). While few tiles are active, k iterations run one after another in a
-single launch on the calling thread; a busy iteration gets a parallel launch of its own.
+Kernels come from a factory (``_kernels_for``), one set per compile-time spec - lanes (0 for the goal layer, LANES
+for node windows), neighbourhood, corner rule - closed over as constants; each kind of layer (``_Layers``) knows
+its kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the kernels'
+parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous
+iteration). Which kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 
-All kernels take ndarrays, so a kernel compiles once per (neighbourhood, corner rule, layer kind) and not once per
-map. Kernels must live in a ``.py`` file: Taichi reads their source.
+| work | kernel | launch |
+|---|---|---|
+| k iterations, the graph cells sampled after each | ``iterate_serially`` | one launch on the calling thread, while at most SERIAL_TILES tiles are active (CPU) |
+| one busy iteration | ``iterate`` | parallel over tiles, one launch per iteration (always on a GPU) |
+| converge: rounds of in-place settling | ``settle_serially`` / ``settle`` | the same rule |
+| initial state, penalties | ``reset``, ``gather_penalties`` | construction, ``reset`` |
+| map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
+| reads | ``sample``, ``trace`` | on demand, serial |
+
+Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
+Taichi reads their source.
 """
 import contextlib
+import functools
+import inspect
 import io
 import logging
 import math
@@ -29,6 +42,8 @@ os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout b
 
 import numpy as np  # noqa: E402
 import taichi as ti  # noqa: E402
+from taichi.lang.matrix import VectorType  # noqa: E402
+from taichi.types.ndarray_type import NdarrayType  # noqa: E402
 
 from . import stencil
 
@@ -44,6 +59,9 @@ SERIAL_TILES = 512
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
+#: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, and the
+#: source (padded layer coordinates), the cell held at 0.
+CHANGED, SOURCE_ROW, SOURCE_COL = 0, 1, 2
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -83,166 +101,92 @@ def _serial_limit() -> int:
     return SERIAL_TILES if _on_cpu else 0
 
 
-# --------------------------------------------------------------------------------------------------- helpers (ti.func)
-@ti.func
-def _broadcast(value, lanes: ti.template()):
-    """``value`` as a scalar (lanes == 0) or as a vector of ``lanes`` copies."""
-    if ti.static(lanes == 0):
-        return value
-    else:
-        return ti.Vector.zero(ti.f32, lanes) + value
+# ------------------------------------------------------------------------------------- kernels, one set per spec
+def _cell_rules(lanes: int, moves: tuple) -> dict:
+    """The per-cell ti.funcs of a layer kind with ``lanes`` packed layers (0: scalar) and the stencil ``moves``,
+    closed over as compile-time constants."""
+    width = max(lanes, 1)
 
-
-@ti.func
-def _lane(value, lane, lanes: ti.template()):
-    """Component ``lane`` (a runtime index) of a packed value (the value itself for a scalar layer)."""
-    out = 0.0
-    if ti.static(lanes == 0):
-        out = value
-    else:
-        out = value[lane]
-    return out
-
-
-@ti.func
-def _differs(a, b, lanes: ti.template()):
-    """1 if any lane of a differs from b. (Taichi 1.7's ``.any()`` of a vector comparison reads only lane 0 when
-    matrices are not scalarised: the comparison is selected into integers first.)"""
-    result = 0
-    if ti.static(lanes == 0):
-        result = ti.i32(a != b)
-    else:
-        result = ti.select(a != b, 1, 0).max()
-    return result
-
-
-@ti.func
-def _best_candidate(src: ti.template(), pen: ti.template(), g, i, j, cap, lanes: ti.template(),
-                    neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """min(cap, min over allowed moves of D[Z] + |V - Z|): the last case of eqs. 5 and 10. The minimum is a
-    select: ``ti.min`` lowers to LLVM's NaN-aware minnum (a compare and a blend more per move), and no value here
-    is NaN (the sums are finite or +inf)."""
-    best = _broadcast(cap, lanes)
-    for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
-        cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost)
-        for c in ti.static(m.crossed):
-            cand += pen[g, i + c[0], j + c[1]]
-        best = ti.select(cand < best, cand, best)
-    return best
-
-
-@ti.func
-def _updated(src: ti.template(), pen: ti.template(), g, i, j, sr, sc, cap, lanes: ti.template(),
-             neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """The new value of cell (i, j) (padded coordinates): eqs. 5 and 10, obstacles before the source."""
-    blocked = pen[g, i, j] > 0
-    value = _best_candidate(src, pen, g, i, j, cap, lanes, neighbourhood, corner_cutting)
-    if i == sr and j == sc:
-        value = _broadcast(0.0, lanes)
-    return ti.select(blocked, _broadcast(cap, lanes), value)
-
-
-# ----------------------------------------------------------------------------------------------------------- kernels
-@ti.func
-def _relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(), g, ta, tb, tick,
-                counts: ti.template(), sr, sc, cap, lanes: ti.template(), neighbourhood: ti.template(),
-                corner_cutting: ti.template()):
-    """One synchronous (Jacobi) iteration src -> dst of tile (g, ta, tb), if active (stamp >= ``tick``).
-
-    A changed cell stamps its tile, and the neighbouring tiles within the stencil's reach, ``tick + 1``: only
-    they can change at the next iteration. Inactive tiles hold equal values in both buffers, so skipping them is
-    exact. The changed cells are added to ``counts[0]``.
-    """
-    if stamps[g, ta, tb] >= tick:
-        rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-        changed = 0
-        for u, v in ti.ndrange(TILE, TILE):
-            r, c = ta * TILE + u, tb * TILE + v
-            if r < rows and c < cols:
-                new = _updated(src, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood, corner_cutting)
-                if _differs(new, src[g, r + PAD, c + PAD], lanes):
-                    changed += 1
-                    _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
-                dst[g, r + PAD, c + PAD] = new
-        if changed:
-            ti.atomic_add(counts[0], changed)
-
-
-@ti.func
-def _relax_kind(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(), tick,
-                counts: ti.template(), sr, sc, cap, lanes: ti.template(), neighbourhood: ti.template(),
-                corner_cutting: ti.template(), serial: ti.template()):
-    """One iteration of the active tiles of one kind of layer (see :func:`_relax_tile`): a parallel loop at a
-    kernel's top level, ``serial`` loops inside a loop."""
-    counts[0] = 0
-    if ti.static(serial):  # nested loops: no division per tile (an ndrange scan is 10x slower)
-        for g in range(stamps.shape[0]):
-            for ta in range(stamps.shape[1]):
-                for tb in range(stamps.shape[2]):
-                    _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
-                                corner_cutting)
-    else:
-        for g, ta, tb in stamps:
-            _relax_tile(src, dst, pen, stamps, g, ta, tb, tick, counts, sr, sc, cap, lanes, neighbourhood,
-                        corner_cutting)
-
-
-@ti.func
-def _active_tiles(stamps: ti.template(), tick):
-    """The number of tiles stamped for iteration ``tick``."""
-    count = 0
-    for g in range(stamps.shape[0]):
-        for a in range(stamps.shape[1]):
-            for b in range(stamps.shape[2]):
-                if stamps[g, a, b] >= tick:
-                    count += 1
-    return count
-
-
-@ti.kernel
-def _iterate(src: ti.types.ndarray(ndim=3), dst: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
-             stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
-             sc: ti.i32, cap: ti.f32, origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
-             out: ti.types.ndarray(ndim=3), step: ti.i32, lanes: ti.template(), neighbourhood: ti.template(),
-             corner_cutting: ti.template()):
-    """One iteration src -> dst of the active tiles of one kind of layer, the tiles shared out among the threads;
-    then the layers sampled at ``cells`` into out[step] (see :func:`_sample_kind`)."""
-    _relax_kind(src, dst, pen, stamps, tick, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting, False)
-    _sample_kind(dst, origins, cells, cap, out, step, lanes)
-
-
-@ti.kernel
-def _iterate_serially(a: ti.types.ndarray(ndim=3), b: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3),
-                      stamps: ti.types.ndarray(ndim=3), tick: ti.i32, counts: ti.types.ndarray(ndim=1), sr: ti.i32,
-                      sc: ti.i32, cap: ti.f32, origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
-                      out: ti.types.ndarray(ndim=3), first: ti.i32, steps: ti.i32, limit: ti.i32, woken: ti.i32,
-                      lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template()) -> ti.i32:
-    """Up to ``steps`` iterations of one kind of layer on the calling thread, each sampled into out[first + step],
-    for as long as at most ``limit`` tiles are active: below that, waking the worker threads costs more than they
-    save. ``a`` holds the values and ``b`` receives the next ones; they swap at each iteration. Returns the
-    iterations done.
-
-    An iteration is idle, and skipped, when the previous one changed nothing (counts[0] == 0) and the host has
-    stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier): then no tile is
-    active and both buffers hold the same values."""
-    done = 0
-    while done < steps:
-        busy = counts[0] > 0 or woken >= tick + done
-        if busy:
-            if _active_tiles(stamps, tick + done) > limit:
-                break
-        if done % 2 == 0:
-            if busy:
-                _relax_kind(a, b, pen, stamps, tick + done, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting,
-                            True)
-            _sample_kind(b, origins, cells, cap, out, first + done, lanes)
+    @ti.func
+    def broadcast(value):
+        """``value`` as a scalar, or as a vector of ``lanes`` copies."""
+        if ti.static(lanes == 0):
+            return value
         else:
-            if busy:
-                _relax_kind(b, a, pen, stamps, tick + done, counts, sr, sc, cap, lanes, neighbourhood, corner_cutting,
-                            True)
-            _sample_kind(a, origins, cells, cap, out, first + done, lanes)
-        done += 1
-    return done
+            return ti.Vector.zero(ti.f32, lanes) + value
+
+    @ti.func
+    def component(value, lane):
+        """Component ``lane`` (a runtime index) of a packed value (the value itself for a scalar layer)."""
+        out = 0.0
+        if ti.static(lanes == 0):
+            out = value
+        else:
+            out = value[lane]
+        return out
+
+    @ti.func
+    def differs(a, b):
+        """1 if any lane of a differs from b. (Taichi 1.7's ``.any()`` of a vector comparison reads only lane 0 when
+        matrices are not scalarised: the comparison is selected into integers first.)"""
+        result = 0
+        if ti.static(lanes == 0):
+            result = ti.i32(a != b)
+        else:
+            result = ti.select(a != b, 1, 0).max()
+        return result
+
+    @ti.func
+    def store(arr: ti.template(), g, i, j, lane, value):
+        """Write ``value`` into component ``lane`` of arr[g, i, j] (the whole cell for a scalar layer), storing only
+        that component: other lanes of the cell may be written by other threads at the same time."""
+        if ti.static(lanes == 0):
+            arr[g, i, j] = value
+        else:
+            arr[g, i, j][lane] = value
+
+    @ti.func
+    def updated(src: ti.template(), pen: ti.template(), header: ti.template(), cap, g, i, j):
+        """The new value of cell (i, j) (padded coordinates): eqs. 5 and 10, obstacles before the source.
+        min(cap, min over allowed moves of D[Z] + |V - Z|) is a select: ``ti.min`` lowers to LLVM's NaN-aware minnum
+        (a compare and a blend more per move), and no value here is NaN (the sums are finite or +inf)."""
+        best = broadcast(cap)
+        for m in ti.static(moves):
+            cand = src[g, i + m.dr, j + m.dc] + ti.f32(m.cost)
+            for c in ti.static(m.crossed):
+                cand += pen[g, i + c[0], j + c[1]]
+            best = ti.select(cand < best, cand, best)
+        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
+            best = broadcast(0.0)
+        return ti.select(pen[g, i, j] > 0, broadcast(cap), best)
+
+    @ti.func
+    def successor_move(values: ti.template(), pen: ti.template(), header: ti.template(), cap, g, lane, i, j):
+        """Index of the argmin move from (i, j) (eqs. 7 and 12), first in tie order; -1 at the source or the cap."""
+        best = cap
+        found = -1
+        index = 0
+        for m in ti.static(moves):
+            cand = component(values[g, i + m.dr, j + m.dc] + ti.f32(m.cost), lane)
+            for c in ti.static(m.crossed):
+                cand += component(pen[g, i + c[0], j + c[1]], lane)
+            if cand < best:
+                best = cand
+                found = index
+            index += 1
+        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
+            found = -1
+        return found
+
+    @ti.func
+    def window_cell(origins: ti.template(), cells: ti.template(), k, g, lane):
+        """Cell k of ``cells`` (grid coordinates) in the layer coordinates of lane ``lane`` of group g."""
+        layer = g * width + lane
+        return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
+
+    return dict(broadcast=broadcast, component=component, differs=differs, store=store, updated=updated,
+                successor_move=successor_move, window_cell=window_cell, width=width,
+                first_column=0 if lanes == 0 else 1)
 
 
 @ti.func
@@ -257,250 +201,351 @@ def _stamp_around(stamps: ti.template(), g, ta, tb, u, v, value):
                 stamps[g, a, b] = value
 
 
-@ti.kernel
-def _stamp_cells(stamps: ti.types.ndarray(ndim=3), cells: ti.types.ndarray(ndim=2),
-                 origins: ti.types.ndarray(ndim=2), lanes: ti.template(), rows: ti.i32, cols: ti.i32, tick: ti.i32):
-    """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach.
-
-    ``origins`` (one per lane) maps grid to layer coordinates; a layer of rows x cols cells sees a cell up to PAD
-    outside it.
-    """
-    for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
-        for lane in range(max(lanes, 1)):
-            a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
-            b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
-            if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                for da in ti.static(range(-PAD, PAD + 1, PAD)):
-                    for db in ti.static(range(-PAD, PAD + 1, PAD)):
-                        ta, tb = (a + da) // TILE, (b + db) // TILE
-                        if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                            stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
-
-
 @ti.func
-def _settle_tile(arr: ti.template(), pen: ti.template(), stamps: ti.template(), g, ta, tb, tick, sr, sc, cap,
-                 lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``): sweep its cells,
-    alternately forwards and backwards, until they stop changing (in cache), stamping ``tick + 1`` on the
-    neighbouring tiles that its changed border cells reach. Returns 1 if the tile changed.
+def _active_tiles(stamps: ti.template(), tick):
+    """The number of tiles stamped for iteration ``tick``."""
+    count = 0
+    for g in range(stamps.shape[0]):
+        for a in range(stamps.shape[1]):
+            for b in range(stamps.shape[2]):
+                if stamps[g, a, b] >= tick:
+                    count += 1
+    return count
 
-    From the initial caps values only fall and every value read is the length of some path to the source, so
-    races between threads are benign and the tiles settle to the unique fixed point of eqs. 5 and 10.
-    """
-    touched = 0
-    if stamps[g, ta, tb] >= tick:
-        rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
-        passes, changed_here = 0, 1
-        while changed_here and passes < 4 * TILE:
-            changed_here = 0
-            for k in range(TILE * TILE):
-                kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
-                u, v = kk // TILE, kk % TILE
+
+def _tile_rules(cell: dict) -> dict:
+    """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
+    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``header`` (HEADER_FIELDS)."""
+    updated, differs = cell["updated"], cell["differs"]
+    component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
+    first_column = cell["first_column"]
+
+    @ti.func
+    def relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
+                   header: ti.template(), cap, g, ta, tb, tick):
+        """One synchronous (Jacobi) iteration src -> dst of tile (g, ta, tb), if active (stamp >= ``tick``).
+
+        A changed cell stamps its tile, and the neighbouring tiles within the stencil's reach, ``tick + 1``: only
+        they can change at the next iteration. Inactive tiles hold equal values in both buffers, so skipping them is
+        exact. The changed cells are added to header[CHANGED].
+        """
+        if stamps[g, ta, tb] >= tick:
+            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
+            changed = 0
+            for u, v in ti.ndrange(TILE, TILE):
                 r, c = ta * TILE + u, tb * TILE + v
                 if r < rows and c < cols:
-                    new = _updated(arr, pen, g, r + PAD, c + PAD, sr, sc, cap, lanes, neighbourhood, corner_cutting)
-                    if _differs(new, arr[g, r + PAD, c + PAD], lanes):
-                        arr[g, r + PAD, c + PAD] = new
-                        changed_here = 1
-                        if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                            _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
-            passes += 1
-        if passes > 1:
-            touched = 1
-        if changed_here:
-            stamps[g, ta, tb] = tick + 1
-    return touched
+                    new = updated(src, pen, header, cap, g, r + PAD, c + PAD)
+                    if differs(new, src[g, r + PAD, c + PAD]):
+                        changed += 1
+                        _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+                    dst[g, r + PAD, c + PAD] = new
+            if changed:
+                ti.atomic_add(header[CHANGED], changed)
 
-
-@ti.func
-def _settle_kind(arr: ti.template(), pen: ti.template(), stamps: ti.template(), tick, sr, sc, cap,
-                 lanes: ti.template(), neighbourhood: ti.template(), corner_cutting: ti.template(),
-                 serial: ti.template()):
-    """One round of :func:`_settle_tile` over every tile of one kind of layer: a parallel loop at a kernel's top
-    level, ``serial`` loops inside a loop. Returns the number of tiles that changed."""
-    touched = 0
-    if ti.static(serial):
-        for g in range(stamps.shape[0]):
-            for ta in range(stamps.shape[1]):
-                for tb in range(stamps.shape[2]):
-                    touched += _settle_tile(arr, pen, stamps, g, ta, tb, tick, sr, sc, cap, lanes, neighbourhood,
-                                            corner_cutting)
-    else:
-        for g, ta, tb in stamps:
-            touched += _settle_tile(arr, pen, stamps, g, ta, tb, tick, sr, sc, cap, lanes, neighbourhood,
-                                    corner_cutting)
-    return touched
-
-
-@ti.kernel
-def _settle(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
-            tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, lanes: ti.template(), neighbourhood: ti.template(),
-            corner_cutting: ti.template()) -> ti.i32:
-    """One round of settling, the tiles shared out among the threads; returns the number of tiles that changed."""
-    return _settle_kind(arr, pen, stamps, tick, sr, sc, cap, lanes, neighbourhood, corner_cutting, False)
-
-
-@ti.kernel
-def _settle_serially(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), stamps: ti.types.ndarray(ndim=3),
-                     tick: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, rounds: ti.i32, limit: ti.i32,
-                     result: ti.types.ndarray(ndim=1), lanes: ti.template(), neighbourhood: ti.template(),
-                     corner_cutting: ti.template()):
-    """Up to ``rounds`` rounds of settling on the calling thread, until one changes no tile or more than ``limit``
-    tiles are active. result[0] = the rounds done, result[1] = the tiles the last of them changed (0: settled)."""
-    done, touched = 0, 1
-    while done < rounds and touched > 0:
-        if _active_tiles(stamps, tick + done) > limit:
-            break
-        touched = _settle_kind(arr, pen, stamps, tick + done, sr, sc, cap, lanes, neighbourhood, corner_cutting,
-                               True)
-        done += 1
-    result[0] = done
-    result[1] = touched
-
-
-@ti.kernel
-def _reset(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), sr: ti.i32, sc: ti.i32, cap: ti.f32,
-           lanes: ti.template()):
-    """The initial state of eqs. 5 and 10: 0 at a free source, the cap everywhere else."""
-    for g, i, j in arr:
-        value = _broadcast(cap, lanes)
-        if i == sr and j == sc:
-            value = ti.select(pen[g, i, j] > 0, value, _broadcast(0.0, lanes))
-        arr[g, i, j] = value
-
-
-@ti.kernel
-def _gather_window_pen(grid_pen: ti.types.ndarray(ndim=3), window_pen: ti.types.ndarray(ndim=3),
-                       origins: ti.types.ndarray(ndim=2), lanes: ti.template()):
-    """Fill each node window's penalties from the grid's (inf outside the grid and in the window's padding)."""
-    rows, cols = grid_pen.shape[1] - 2 * PAD, grid_pen.shape[2] - 2 * PAD
-    side = window_pen.shape[1] - 2 * PAD
-    for g, i, j in window_pen:
-        value = _broadcast(ti.math.inf, lanes)
-        for k in ti.static(range(lanes)):
-            r = origins[g * lanes + k, 0] + i - PAD
-            c = origins[g * lanes + k, 1] + j - PAD
-            inside = PAD <= i < side + PAD and PAD <= j < side + PAD and 0 <= r < rows and 0 <= c < cols
-            if inside:
-                value[k] = grid_pen[0, r + PAD, c + PAD]
-        window_pen[g, i, j] = value
-
-
-@ti.func
-def _store(arr: ti.template(), g, i, j, lane, value, lanes: ti.template()):
-    """Write ``value`` into component ``lane`` of arr[g, i, j] (the whole cell for a scalar layer), storing only
-    that component: other lanes of the cell may be written by other threads at the same time."""
-    if ti.static(lanes == 0):
-        arr[g, i, j] = value
-    else:
-        arr[g, i, j][lane] = value
-
-
-@ti.kernel
-def _paint(pen: ti.types.ndarray(ndim=3), buffer_a: ti.types.ndarray(ndim=3), buffer_b: ti.types.ndarray(ndim=3),
-           origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2), values: ti.types.ndarray(ndim=1),
-           cap: ti.f32, lanes: ti.template(), rows: ti.i32, cols: ti.i32):
-    """Write changed cells' penalties into every layer that contains them (``origins``, one per lane, maps grid to
-    layer coordinates of a rows x cols layer); a newly occupied cell takes its obstacle value, the cap, at once."""
-    for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-        for lane in range(max(lanes, 1)):
-            a = cells[k, 0] - origins[g * max(lanes, 1) + lane, 0]
-            b = cells[k, 1] - origins[g * max(lanes, 1) + lane, 1]
-            if 0 <= a < rows and 0 <= b < cols:
-                _store(pen, g, a + PAD, b + PAD, lane, values[k], lanes)
-                if values[k] > 0:
-                    _store(buffer_a, g, a + PAD, b + PAD, lane, cap, lanes)
-                    _store(buffer_b, g, a + PAD, b + PAD, lane, cap, lanes)
-
-
-@ti.func
-def _successor_move(arr: ti.template(), pen: ti.template(), g, lane, i, j, sr, sc, cap, lanes: ti.template(),
-                    neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """Index of the argmin move from (i, j) (eqs. 7 and 12), first in tie order; -1 at the source or at the cap."""
-    best = cap
-    found = -1
-    index = 0
-    for m in ti.static(stencil.moves(neighbourhood, corner_cutting)):
-        cand = _lane(arr[g, i + m.dr, j + m.dc] + ti.f32(m.cost), lane, lanes)
-        for c in ti.static(m.crossed):
-            cand += _lane(pen[g, i + c[0], j + c[1]], lane, lanes)
-        if cand < best:
-            best = cand
-            found = index
-        index += 1
-    if i == sr and j == sc:
-        found = -1
-    return found
-
-
-@ti.kernel
-def _trace(arr: ti.types.ndarray(ndim=3), pen: ti.types.ndarray(ndim=3), g: ti.i32, lane: ti.i32, i0: ti.i32,
-           j0: ti.i32, sr: ti.i32, sc: ti.i32, cap: ti.f32, out: ti.types.ndarray(ndim=2), lanes: ti.template(),
-           neighbourhood: ti.template(), corner_cutting: ti.template()):
-    """Follow successors from (i0, j0) (padded coordinates) for at most out.shape[0] - 1 steps, into out[1:];
-    out[0, 0] receives the number of steps."""
-    i, j, steps = i0, j0, 0
-    ti.loop_config(serialize=True)
-    for _ in range(out.shape[0] - 1):
-        move = -1
-        if PAD <= i < arr.shape[1] - PAD and PAD <= j < arr.shape[2] - PAD:
-            move = _successor_move(arr, pen, g, lane, i, j, sr, sc, cap, lanes, neighbourhood, corner_cutting)
-        if move >= 0:
-            for index, m in ti.static(enumerate(stencil.moves(neighbourhood, corner_cutting))):
-                if move == index:
-                    i += m.dr
-                    j += m.dc
-            out[steps + 1, 0] = i
-            out[steps + 1, 1] = j
-            steps += 1
+    @ti.func
+    def relax_all(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
+                  header: ti.template(), cap, tick, serial: ti.template()):
+        """One iteration of the active tiles (see ``relax_tile``): a parallel loop at a kernel's top level,
+        ``serial`` loops inside a loop (nested loops: an ndrange scan divides per tile, 10x slower)."""
+        header[CHANGED] = 0
+        if ti.static(serial):
+            for g in range(stamps.shape[0]):
+                for ta in range(stamps.shape[1]):
+                    for tb in range(stamps.shape[2]):
+                        relax_tile(src, dst, pen, stamps, header, cap, g, ta, tb, tick)
         else:
-            break
-    out[0, 0] = steps
+            for g, ta, tb in stamps:
+                relax_tile(src, dst, pen, stamps, header, cap, g, ta, tb, tick)
+
+    @ti.func
+    def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), header: ti.template(), cap,
+                    g, ta, tb, tick):
+        """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``): sweep its cells,
+        alternately forwards and backwards, until they stop changing (in cache), stamping ``tick + 1`` on the
+        neighbouring tiles that its changed border cells reach. Returns 1 if the tile changed.
+
+        From the initial caps values only fall and every value read is the length of some path to the source, so
+        races between threads are benign and the tiles settle to the unique fixed point of eqs. 5 and 10.
+        """
+        touched = 0
+        if stamps[g, ta, tb] >= tick:
+            rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
+            passes, changed_here = 0, 1
+            while changed_here and passes < 4 * TILE:
+                changed_here = 0
+                for k in range(TILE * TILE):
+                    kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
+                    u, v = kk // TILE, kk % TILE
+                    r, c = ta * TILE + u, tb * TILE + v
+                    if r < rows and c < cols:
+                        new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
+                        if differs(new, values[g, r + PAD, c + PAD]):
+                            values[g, r + PAD, c + PAD] = new
+                            changed_here = 1
+                            if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                                _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+                passes += 1
+            if passes > 1:
+                touched = 1
+            if changed_here:
+                stamps[g, ta, tb] = tick + 1
+        return touched
+
+    @ti.func
+    def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), header: ti.template(), cap,
+                   tick, serial: ti.template()):
+        """One round of ``settle_tile`` over every tile: a parallel loop at a kernel's top level, ``serial`` loops
+        inside a loop. Returns the number of tiles that changed."""
+        touched = 0
+        if ti.static(serial):
+            for g in range(stamps.shape[0]):
+                for ta in range(stamps.shape[1]):
+                    for tb in range(stamps.shape[2]):
+                        touched += settle_tile(values, pen, stamps, header, cap, g, ta, tb, tick)
+        else:
+            for g, ta, tb in stamps:
+                touched += settle_tile(values, pen, stamps, header, cap, g, ta, tb, tick)
+        return touched
+
+    @ti.func
+    def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
+                    step):
+        """out[step, k, column] = each layer of ``values`` at cells[k]: column 0 for the goal layer (scalar),
+        1 + node for a node layer (its cap outside its window)."""
+        rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
+        ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
+        for k, g in ti.ndrange(cells.shape[0], values.shape[0]):
+            for lane in range(width):
+                column = g * width + lane + first_column
+                if column < out.shape[2]:
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    value = cap
+                    if 0 <= a < rows and 0 <= b < cols:
+                        value = component(values[g, a + PAD, b + PAD], lane)
+                    out[step, k, column] = value
+
+    return dict(relax_all=relax_all, settle_all=settle_all, sample_into=sample_into)
 
 
-@ti.func
-def _sample_kind(arr: ti.template(), origins: ti.template(), cells: ti.template(), cap, out: ti.template(), step,
-                 lanes: ti.template()):
-    """out[step, k, column] = each layer of one kind at cells[k]: column 0 for the goal layer (lanes == 0),
-    1 + node for a node layer (its cap outside its window). ``origins`` maps grid to layer coordinates."""
-    rows, cols = arr.shape[1] - 2 * PAD, arr.shape[2] - 2 * PAD
-    ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
-    for k, g in ti.ndrange(cells.shape[0], arr.shape[0]):
-        for lane in range(max(lanes, 1)):
-            layer = g * max(lanes, 1) + lane
-            column = layer + ti.static(0 if lanes == 0 else 1)
-            if column < out.shape[2]:
-                a = cells[k, 0] - origins[layer, 0]
-                b = cells[k, 1] - origins[layer, 1]
-                value = cap
-                if 0 <= a < rows and 0 <= b < cols:
-                    value = _lane(arr[g, a + PAD, b + PAD], lane, lanes)
-                out[step, k, column] = value
+class _Kernels:
+    """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
+    stencil's ``neighbourhood`` and corner rule - closed over as constants; :attr:`all` lists every one, for
+    :meth:`_Layers.warm_up`. Build them with :func:`_kernels_for`, which caches one set per spec.
+
+    Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
+    ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells; ``out`` samples
+    (steps, cells, 1 + nodes); ``run`` the launch's iteration numbers and limits."""
+
+    def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool):
+        init_taichi()
+        self.lanes = lanes
+        moves = stencil.moves(neighbourhood, corner_cutting)
+        cell = _cell_rules(lanes, moves)
+        tile = _tile_rules(cell)
+        relax_all, settle_all, sample_into = tile["relax_all"], tile["settle_all"], tile["sample_into"]
+        broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
+        successor_move, width = cell["successor_move"], cell["width"]
+        Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
+        Ints = ti.types.ndarray(dtype=ti.i32, ndim=1)  # noqa: N806
+        Cells = Origins = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
+        Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
+        Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
+
+        @ti.kernel
+        def iterate(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, origins: Origins,
+                    cells: Cells, out: Samples, cap: ti.f32, run: ti.types.vector(2, ti.i32)):
+            """One iteration src -> dst of the active tiles (run = (tick, step)), shared out among the threads; then
+            the layers sampled at ``cells`` into out[step]."""
+            relax_all(src, dst, pen, stamps, header, cap, run[0], False)
+            sample_into(dst, origins, cells, out, cap, run[1])
+
+        @ti.kernel
+        def iterate_serially(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, origins: Origins,
+                             cells: Cells, out: Samples, cap: ti.f32, run: ti.types.vector(5, ti.i32)) -> ti.i32:
+            """Up to ``steps`` iterations on the calling thread (run = (tick, first, steps, limit, woken)), each
+            sampled into out[first + step], for as long as at most ``limit`` tiles are active. ``src`` and ``dst``
+            swap roles at each iteration. Returns the iterations done.
+
+            An iteration is idle, and skipped, when the previous one changed nothing (header[CHANGED] == 0) and the
+            host has stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier):
+            then no tile is active and both buffers hold the same values."""
+            tick, first, steps, limit, woken = run[0], run[1], run[2], run[3], run[4]
+            done = 0
+            while done < steps:
+                busy = header[CHANGED] > 0 or woken >= tick + done
+                if busy:
+                    if _active_tiles(stamps, tick + done) > limit:
+                        break
+                if done % 2 == 0:
+                    if busy:
+                        relax_all(src, dst, pen, stamps, header, cap, tick + done, True)
+                    sample_into(dst, origins, cells, out, cap, first + done)
+                else:
+                    if busy:
+                        relax_all(dst, src, pen, stamps, header, cap, tick + done, True)
+                    sample_into(src, origins, cells, out, cap, first + done)
+                done += 1
+            return done
+
+        @ti.kernel
+        def settle(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32, tick: ti.i32) -> ti.i32:
+            """One round of in-place settling, the tiles shared out among the threads; returns the number of tiles
+            that changed."""
+            return settle_all(values, pen, stamps, header, cap, tick, False)
+
+        @ti.kernel
+        def settle_serially(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32,
+                            run: ti.types.vector(3, ti.i32), result: Ints):
+            """Up to ``rounds`` rounds of settling on the calling thread (run = (tick, rounds, limit)), until one
+            changes no tile or more than ``limit`` tiles are active. result[0] = the rounds done, result[1] = the
+            tiles the last of them changed (0: settled)."""
+            tick, rounds, limit = run[0], run[1], run[2]
+            done, touched = 0, 1
+            while done < rounds and touched > 0:
+                if _active_tiles(stamps, tick + done) > limit:
+                    break
+                touched = settle_all(values, pen, stamps, header, cap, tick + done, True)
+                done += 1
+            result[0] = done
+            result[1] = touched
+
+        @ti.kernel
+        def reset(src: Values, dst: Values, pen: Values, header: Ints, cap: ti.f32):
+            """The initial state of eqs. 5 and 10 in both buffers: 0 at a free source, the cap everywhere else."""
+            for g, i, j in src:
+                value = broadcast(cap)
+                if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
+                    value = ti.select(pen[g, i, j] > 0, value, broadcast(0.0))
+                src[g, i, j] = value
+                dst[g, i, j] = value
+
+        @ti.kernel
+        def gather_penalties(pen: Values, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
+            """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
+            blocked and in the padding): inf outside the grid and in the layer's own padding."""
+            rows, cols = grid.shape[0] - 2 * PAD, grid.shape[1] - 2 * PAD
+            side_rows, side_cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            for g, i, j in pen:
+                for lane in range(width):
+                    r = origins[g * width + lane, 0] + i - PAD
+                    c = origins[g * width + lane, 1] + j - PAD
+                    value = ti.math.inf
+                    if PAD <= i < side_rows + PAD and PAD <= j < side_cols + PAD and 0 <= r < rows and 0 <= c < cols:
+                        value = grid[r + PAD, c + PAD]
+                    store(pen, g, i, j, lane, value)
+
+        @ti.kernel
+        def paint(src: Values, dst: Values, pen: Values, origins: Origins, cells: Cells,
+                  penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32):
+            """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them; a newly
+            occupied cell takes its obstacle value, the cap, at once in both buffers."""
+            rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols:
+                        store(pen, g, a + PAD, b + PAD, lane, penalties[k])
+                        if penalties[k] > 0:
+                            store(src, g, a + PAD, b + PAD, lane, cap)
+                            store(dst, g, a + PAD, b + PAD, lane, cap)
+
+        @ti.kernel
+        def stamp_cells(stamps: Stamps, pen: Values, origins: Origins, cells: Cells, tick: ti.i32):
+            """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
+            (a layer, of ``pen``'s shape, sees a cell up to PAD outside it)."""
+            rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
+                        for da in ti.static(range(-PAD, PAD + 1, PAD)):
+                            for db in ti.static(range(-PAD, PAD + 1, PAD)):
+                                ta, tb = (a + da) // TILE, (b + db) // TILE
+                                if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
+                                    stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
+
+        @ti.kernel
+        def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
+            """Every layer of this kind at ``cells`` into out[0] (see ``sample_into``)."""
+            sample_into(values, origins, cells, out, cap, 0)
+
+        @ti.kernel
+        def trace(values: Values, pen: Values, header: Ints, cap: ti.f32, index: ti.i32,
+                  start: ti.types.vector(2, ti.i32), out: Cells):
+            """Follow the successors of layer ``index`` of this kind from ``start`` (padded layer coordinates) for at
+            most out.shape[0] - 1 steps, into out[1:]; out[0, 0] receives the number of steps."""
+            g, lane = index // width, index % width
+            i, j, steps = start[0], start[1], 0
+            ti.loop_config(serialize=True)
+            for _ in range(out.shape[0] - 1):
+                move = -1
+                if PAD <= i < values.shape[1] - PAD and PAD <= j < values.shape[2] - PAD:
+                    move = successor_move(values, pen, header, cap, g, lane, i, j)
+                if move >= 0:
+                    for k, m in ti.static(enumerate(moves)):
+                        if move == k:
+                            i += m.dr
+                            j += m.dc
+                    out[steps + 1, 0] = i
+                    out[steps + 1, 1] = j
+                    steps += 1
+                else:
+                    break
+            out[0, 0] = steps
+
+        self.iterate, self.iterate_serially, self.settle, self.settle_serially = (iterate, iterate_serially, settle,
+                                                                                  settle_serially)
+        self.reset, self.paint, self.stamp_cells, self.sample, self.trace = reset, paint, stamp_cells, sample, trace
+        self.gather_penalties = gather_penalties
+        self.all = (iterate, iterate_serially, settle, settle_serially, reset, gather_penalties, paint, stamp_cells,
+                    sample, trace)
+        self.warmed = False
 
 
-@ti.kernel
-def _sample(arr: ti.types.ndarray(ndim=3), origins: ti.types.ndarray(ndim=2), cells: ti.types.ndarray(ndim=2),
-            cap: ti.f32, out: ti.types.ndarray(ndim=3), lanes: ti.template()):
-    _sample_kind(arr, origins, cells, cap, out, 0, lanes)
+@functools.lru_cache(maxsize=None)
+def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool) -> _Kernels:
+    """The kernels of one compile-time spec, built once per process (Taichi compiles each on its first launch)."""
+    return _Kernels(lanes, neighbourhood, corner_cutting)
+
+
+def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
+    """A value for a kernel parameter that makes a launch touch nothing that matters: the scratch layer's array or
+    cap of that name, else zeros, or a small zero array of the annotated type (two entries along each axis: no
+    kernel indexes past them)."""
+    if hasattr(scratch, parameter.name):
+        return getattr(scratch, parameter.name)
+    kind = parameter.annotation
+    if isinstance(kind, NdarrayType):
+        return np.zeros((2,) * kind.ndim, np.int32 if kind.dtype == ti.i32 else np.float32)
+    if isinstance(kind, VectorType):
+        return ti.Vector([0] * kind.n, dt=kind.dtype)
+    if kind == ti.i32 or kind == ti.f32:
+        return 0
+    raise TypeError(f"warm_up cannot launch parameter {parameter.name!r} of type {kind!r}")
 
 
 # ------------------------------------------------------------------------------------------------------- host class
 class _Layers:
-    """One kind of layer, the goal's (scalar) or the node windows (``lanes`` packed per cell): two buffers (Jacobi),
-    penalties, the origin of each lane in grid coordinates, and the active-tile flags."""
+    """One kind of layer, self-describing: the goal's (scalar, ``lanes`` = 0) or the node windows (``lanes`` packed
+    per cell). It holds its kernels, two value buffers (Jacobi: ``src`` the values, ``dst`` the next), the
+    penalties ``pen``, the ``header`` (CHANGED, SOURCE_ROW, SOURCE_COL), each lane's ``origins`` (grid coordinates
+    of its cell (0, 0)), its ``cap`` and the active-tile ``stamps``, under the names the kernels' parameters use."""
 
-    def __init__(self, groups: int, rows: int, cols: int, lanes: int, origins: np.ndarray):
-        init_taichi()
-        self.lanes, self.rows, self.cols = lanes, rows, cols
-        shape = (groups, rows + 2 * PAD, cols + 2 * PAD)
+    def __init__(self, kernels: _Kernels, groups: int, side: tuple[int, int], origins: np.ndarray,
+                 source: tuple[int, int], cap: float):
+        self.kernels = kernels
+        self.lanes, (self.rows, self.cols), self.cap = kernels.lanes, side, float(cap)
+        shape = (groups, self.rows + 2 * PAD, self.cols + 2 * PAD)
         self.buffers = [self._array(shape), self._array(shape)]
         self.pen = self._array(shape)
-        self.current = 0
-        self.origins = _device(origins.astype(np.int32))
-        self.stamps = ti.ndarray(ti.i32, (groups, -(-rows // TILE), -(-cols // TILE)))
+        self.grid_origins = np.asarray(origins, np.int32)
+        self.origins = _device(self.grid_origins)
+        self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
+        self.header = _device(np.array([0, source[0], source[1]], np.int32))
+        self.current = 0  # which buffer holds the values
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
         self.woken = 0  # the latest iteration the host stamped tiles for (activate_all, activate_cells)
-        self.counts = ti.ndarray(ti.i32, (1,))  # cells the last iteration changed
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -509,12 +554,22 @@ class _Layers:
         return ti.ndarray(ti.f32, shape)
 
     @property
-    def values(self):
+    def src(self):
         return self.buffers[self.current]
 
+    values = src
+
     @property
-    def other(self):
+    def dst(self):
         return self.buffers[1 - self.current]
+
+    def changed(self) -> int:
+        """Cells the last iteration changed."""
+        return int(self.header[CHANGED])
+
+    def move_source(self, source: tuple[int, int]) -> None:
+        """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on."""
+        self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
 
     def activate_all(self) -> None:
         self.stamps.fill(self.tick)
@@ -525,75 +580,112 @@ class _Layers:
 
     def activate_cells(self, cells: np.ndarray) -> None:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
-        _stamp_cells(self.stamps, cells, self.origins, self.lanes, self.rows, self.cols, self.tick)
+        self.kernels.stamp_cells(stamps=self.stamps, pen=self.pen, origins=self.origins, cells=cells, tick=self.tick)
         self.woken = self.tick
 
-    def paint(self, cells: np.ndarray, values: np.ndarray, cap: float) -> None:
-        """Set the penalties of ``cells`` to ``values`` (0 free, inf occupied) and wake the tiles around them."""
-        _paint(self.pen, self.buffers[0], self.buffers[1], self.origins, cells, values, cap, self.lanes, self.rows,
-               self.cols)
+    def gather_penalties(self, grid: np.ndarray) -> None:
+        """Every layer's penalties from the grid's, ``grid`` padded by PAD (0 free, inf blocked and outside)."""
+        self.kernels.gather_penalties(pen=self.pen, origins=self.origins, grid=grid)
+
+    def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
+        """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
+        self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, origins=self.origins, cells=cells,
+                           penalties=penalties, cap=self.cap)
         self.activate_cells(cells)
 
-    def iterate(self, k: int, sr: int, sc: int, cap: float, cells: np.ndarray, out: np.ndarray, neighbourhood: int,
-                corner_cutting: bool) -> None:
+    def reset(self) -> None:
+        """Both buffers back to the initial state of eqs. 5 and 10, every tile active."""
+        self.kernels.reset(src=self.src, dst=self.dst, pen=self.pen, header=self.header, cap=self.cap)
+        self.rebase()
+        self.activate_all()
+
+    def _waves(self, count: int, serially, in_parallel) -> tuple[int, bool]:
+        """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
+        rounds). While at most ``_serial_limit()`` tiles are active they run one after another in one launch on the
+        calling thread, ``serially(first, count, limit) -> (done, finished)``; a busier wave gets a parallel launch
+        of its own, ``in_parallel(first) -> finished``. Stops early once finished; returns (done, finished)."""
+        done, finished = 0, False
+        while done < count and not finished:
+            ran, finished = serially(done, count - done, _serial_limit())
+            done += ran
+            if done < count and not finished:
+                finished = in_parallel(done)
+                done += 1
+        return done, finished
+
+    def iterate(self, k: int, cells: np.ndarray, out: np.ndarray) -> None:
         """k synchronous iterations over the active tiles, the layers sampled at ``cells`` into out[step] after
-        each; ``counts[0]`` then holds the cells the last iteration changed. The iterations run in one serial launch
-        while at most ``SERIAL_TILES`` tiles are active, in one parallel launch each beyond."""
-        done = 0
-        while done < k:
-            done += self._swap(_iterate_serially(self.values, self.other, self.pen, self.stamps, self.tick,
-                                                 self.counts, sr, sc, cap, self.origins, cells, out, done, k - done,
-                                                 _serial_limit(), self.woken, self.lanes, neighbourhood,
-                                                 corner_cutting))
-            if done < k:
-                _iterate(self.values, self.other, self.pen, self.stamps, self.tick, self.counts, sr, sc, cap,
-                         self.origins, cells, out, done, self.lanes, neighbourhood, corner_cutting)
-                done += self._swap(1)
+        each; header[CHANGED] then holds the cells the last iteration changed."""
+        def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
+            done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
+                                                 run=(self.tick, first, steps, limit, self.woken))
+            self._count_iterations(done)
+            return done, False
 
-    def settle(self, sr: int, sc: int, cap: float, max_rounds: int | None, neighbourhood: int,
-               corner_cutting: bool) -> tuple[int, bool]:
-        """Rounds of in-place tile settling until one changes no tile, or ``max_rounds``; returns (rounds, settled).
-        Rounds run one after another in one launch while at most ``SERIAL_TILES`` tiles are active."""
-        limit = _NEVER if max_rounds is None else max_rounds
+        def in_parallel(first: int) -> bool:
+            self.kernels.iterate(**self._relaxing(), cells=cells, out=out, run=(self.tick, first))
+            self._count_iterations(1)
+            return False
+
+        self._waves(k, serially, in_parallel)
+
+    def _relaxing(self) -> dict:
+        """The arrays and cap an iteration reads and writes."""
+        return dict(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
+                    origins=self.origins, cap=self.cap)
+
+    def settle(self, max_rounds: int | None) -> int:
+        """Rounds of in-place tile settling until one changes no tile, or ``max_rounds``; then both buffers hold the
+        result and only an unsettled layer stays active. Returns the rounds done."""
         result = np.zeros(2, np.int32)
-        rounds, touched = 0, 1
-        while touched and rounds < limit:
-            _settle_serially(self.values, self.pen, self.stamps, self.tick, sr, sc, cap, limit - rounds,
-                             _serial_limit(), result, self.lanes, neighbourhood, corner_cutting)
-            done, touched = int(result[0]), int(result[1])
-            self.tick += done
-            rounds += done
-            if touched and rounds < limit:
-                touched = _settle(self.values, self.pen, self.stamps, self.tick, sr, sc, cap, self.lanes,
-                                  neighbourhood, corner_cutting)
-                self.tick += 1
-                rounds += 1
-        return rounds, not touched
+        arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, header=self.header, cap=self.cap)
 
-    def warm_up(self, neighbourhood: int, corner_cutting: bool) -> None:
-        """Compile this kind's kernels by launching each on nothing (no cell, no step, no tile active at _NEVER):
-        no value, stamp or count of the layers changes."""
-        nowhere = np.zeros((0, 2), np.int32)
-        out = np.zeros((1, 0, 1), np.float32)
-        counts = ti.ndarray(ti.i32, (1,))
-        _iterate(self.values, self.other, self.pen, self.stamps, _NEVER, counts, 0, 0, 0.0, self.origins, nowhere,
-                 out, 0, self.lanes, neighbourhood, corner_cutting)
-        _iterate_serially(self.values, self.other, self.pen, self.stamps, _NEVER, counts, 0, 0, 0.0, self.origins,
-                          nowhere, out, 0, 0, 0, _NEVER, self.lanes, neighbourhood, corner_cutting)
-        _paint(self.pen, self.buffers[0], self.buffers[1], self.origins, nowhere, np.zeros(0, np.float32), 0.0,
-               self.lanes, self.rows, self.cols)
-        _stamp_cells(self.stamps, nowhere, self.origins, self.lanes, self.rows, self.cols, _NEVER)
-        _sample(self.values, self.origins, nowhere, 0.0, out, self.lanes)
-        _settle(self.values, self.pen, self.stamps, _NEVER, 0, 0, 0.0, self.lanes, neighbourhood, corner_cutting)
-        _settle_serially(self.values, self.pen, self.stamps, _NEVER, 0, 0, 0.0, 0, 0, np.zeros(2, np.int32),
-                         self.lanes, neighbourhood, corner_cutting)
-        _trace(self.values, self.pen, 0, 0, PAD, PAD, PAD, PAD, 0.0, np.zeros((1, 2), np.int32), self.lanes,
-               neighbourhood, corner_cutting)
+        def serially(first: int, rounds: int, limit: int) -> tuple[int, bool]:
+            self.kernels.settle_serially(**arrays, run=(self.tick, rounds, limit), result=result)
+            self.tick += int(result[0])
+            return int(result[0]), int(result[1]) == 0
+
+        def in_parallel(first: int) -> bool:
+            touched = self.kernels.settle(**arrays, tick=self.tick)
+            self.tick += 1
+            return touched == 0
+
+        rounds, settled = self._waves(_NEVER if max_rounds is None else max_rounds, serially, in_parallel)
+        self.dst.copy_from(self.values)
+        if settled:
+            self.deactivate_all()
+        else:
+            self.activate_all()
+        return rounds
+
+    def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
+        """Every layer of this kind at ``cells`` into out[0]."""
+        self.kernels.sample(values=self.values, origins=self.origins, cells=cells, out=out, cap=self.cap)
+
+    def trace(self, index: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
+        """Cells (grid coordinates) visited following the successors of layer ``index`` of this kind from ``start``
+        for at most ``max_steps`` moves, ``start`` left out."""
+        origin = self.grid_origins[index] - PAD  # grid coordinates of padded layer cell (0, 0)
+        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
+        self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index,
+                           start=(start[0] - origin[0], start[1] - origin[1]), out=out)
+        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
+
+    def warm_up(self) -> None:
+        """Compile every kernel of this kind (:attr:`_Kernels.all`) by launching it on a scratch layer of one cell
+        with idle arguments (:func:`_idle_argument`): nothing of this layer changes. Once per spec and process."""
+        if self.kernels.warmed:
+            return
+        scratch = _Layers(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
+        for kernel in self.kernels.all:
+            kernel(**{parameter.name: _idle_argument(parameter, scratch)
+                      for parameter in inspect.signature(kernel).parameters.values()})
+        self.kernels.warmed = True
 
     def idle(self) -> bool:
         """Whether the next iteration has nothing to do: the last one changed nothing and the host has stamped no
         tile since (then both buffers hold the same values, and so would every later iteration's)."""
-        return int(self.counts[0]) == 0 and self.woken < self.tick
+        return self.changed() == 0 and self.woken < self.tick
 
     def rebase(self) -> None:
         """Renumber iterations from 0 once they pass REBASE_AT: stamps of past iterations become -1 (inactive),
@@ -605,11 +697,10 @@ class _Layers:
         self.woken = max(self.woken - self.tick, -1)
         self.tick = 0
 
-    def _swap(self, iterations: int) -> int:
+    def _count_iterations(self, iterations: int) -> None:
         """Account for ``iterations`` done: the buffers swap roles at each."""
         self.current ^= iterations % 2
         self.tick += iterations
-        return iterations
 
 
 def _cells_array(cells) -> np.ndarray:
@@ -645,44 +736,37 @@ class Engine:
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
 
-        self._goal = _Layers(1, self.rows, self.cols, 0, np.zeros((1, 2)))
-        self._goal.pen.from_numpy(self._padded_penalties())
-        self._windows = None
+        def kernels(lanes: int) -> _Kernels:
+            return _kernels_for(lanes, self.neighbourhood, self.corner_cutting)
+
+        self._goal = _Layers(kernels(0), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
+                             (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap)
+        self._layers = [self._goal]
         if len(self.nodes):
             self.radius = int(math.ceil(self.node_cap))
             side = 2 * self.radius + 1
             groups = -(-len(self.nodes) // LANES)
             origins = np.full((groups * LANES, 2), _FAR, np.int32)
             origins[: len(self.nodes)] = self.nodes - self.radius
-            self._windows = _Layers(groups, side, side, LANES, origins)
-            _gather_window_pen(self._goal.pen, self._windows.pen, self._windows.origins, LANES)
+            centre = self.radius + PAD
+            self._windows = _Layers(kernels(LANES), groups, (side, side), origins, (centre, centre), self.node_cap)
+            self._layers.append(self._windows)
+        grid_penalties = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
+        grid_penalties[PAD:-PAD, PAD:-PAD] = np.where(self.occupied, np.inf, 0.0)
+        for layers in self._layers:
+            layers.gather_penalties(grid_penalties)
         self.reset()
 
     # -- state -------------------------------------------------------------------------------------------------
-    def _padded_penalties(self) -> np.ndarray:
-        pen = np.full((1, self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
-        pen[0, PAD:-PAD, PAD:-PAD] = np.where(self.occupied, np.inf, 0.0)
-        return pen
-
-    def _kinds(self):
-        """(layers, source row, source col, cap) of the goal layer and, if any, of the node windows."""
-        yield self._goal, self.goal[0] + PAD, self.goal[1] + PAD, self.goal_cap
-        if self._windows is not None:
-            centre = self.radius + PAD
-            yield self._windows, centre, centre, self.node_cap
-
     def reset(self) -> None:
         """Back to the initial state of eqs. 5 and 10 (iteration 0)."""
-        for layers, sr, sc, cap in self._kinds():
-            for buffer in layers.buffers:
-                _reset(buffer, layers.pen, sr, sc, cap, layers.lanes)
-            layers.rebase()
-            layers.activate_all()
+        for layers in self._layers:
+            layers.reset()
         self.iterations = 0
 
     def activate_all(self) -> None:
         """Make the next iteration relax every tile (a dense iteration; the result is the same)."""
-        for layers, _, _, _ in self._kinds():
+        for layers in self._layers:
             layers.activate_all()
 
     def warm_up(self) -> None:
@@ -691,8 +775,8 @@ class Engine:
         Taichi compiles a kernel on its first launch (about a second; later processes load it from Taichi's offline
         cache), and the parallel iteration is first launched when a large change arrives: warming up in the setup
         phase keeps that pause out of the control loop. :meth:`tdp.Navigator.setup` calls it."""
-        for layers, _, _, _ in self._kinds():
-            layers.warm_up(self.neighbourhood, self.corner_cutting)
+        for layers in self._layers:
+            layers.warm_up()
 
     def step(self, k: int = 1) -> None:
         """Run k synchronous iterations of every layer (only their active tiles). Once an iteration changes
@@ -700,7 +784,7 @@ class Engine:
         any k returns at once on a settled field."""
         nowhere = np.zeros((0, 2), np.int32)
         while k > 0:
-            if all(layers.idle() for layers, _, _, _ in self._kinds()):
+            if all(layers.idle() for layers in self._layers):
                 self.iterations += k
                 return
             chunk = min(k, _CHUNK)
@@ -709,7 +793,7 @@ class Engine:
 
     def changed(self) -> int:
         """Cells changed by the last iteration, all layers together."""
-        return int(sum(layers.counts[0] for layers, _, _, _ in self._kinds()))
+        return sum(layers.changed() for layers in self._layers)
 
     def converge(self, max_rounds: int | None = None) -> int:
         """Relax from the initial state to the fixed point; return the rounds it took (the larger count of the two
@@ -721,16 +805,7 @@ class Engine:
         another in a single launch.
         """
         self.reset()
-        rounds = 0
-        for layers, sr, sc, cap in self._kinds():
-            done, settled = layers.settle(sr, sc, cap, max_rounds, self.neighbourhood, self.corner_cutting)
-            rounds = max(rounds, done)
-            layers.other.copy_from(layers.values)
-            if settled:
-                layers.deactivate_all()
-            else:
-                layers.activate_all()
-        return rounds
+        return max(layers.settle(max_rounds) for layers in self._layers)
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
@@ -741,13 +816,14 @@ class Engine:
         occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         values = np.where(occupied, np.inf, 0.0).astype(np.float32)
-        for layers, _, _, cap in self._kinds():
-            layers.paint(cells, values, cap)
+        for layers in self._layers:
+            layers.paint(cells, values)
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the goal layer's source; the values propagate from it from the next iteration on."""
         moved = np.array([self.goal, goal], np.int32)
         self.goal = (int(goal[0]), int(goal[1]))
+        self._goal.move_source((self.goal[0] + PAD, self.goal[1] + PAD))
         self._goal.activate_cells(moved)
 
     # -- reading -----------------------------------------------------------------------------------------------
@@ -769,8 +845,8 @@ class Engine:
         """Every layer at each of ``cells`` (n, 2): a float32 (n, 1 + nodes) array, column 0 the goal layer."""
         cells = _cells_array(cells)
         out = np.empty((1, len(cells), 1 + len(self.nodes)), np.float32)
-        for layers, _, _, cap in self._kinds():
-            _sample(layers.values, layers.origins, cells, cap, out, layers.lanes)
+        for layers in self._layers:
+            layers.sample(cells, out)
         return out[0]
 
     def advance(self, k: int, cells: np.ndarray) -> np.ndarray:
@@ -781,9 +857,9 @@ class Engine:
 
     def _advance(self, k: int, cells: np.ndarray) -> np.ndarray:
         out = np.empty((k, len(cells), 1 + len(self.nodes)), np.float32)
-        for layers, sr, sc, cap in self._kinds():
+        for layers in self._layers:
             layers.rebase()
-            layers.iterate(k, sr, sc, cap, cells, out, self.neighbourhood, self.corner_cutting)
+            layers.iterate(k, cells, out)
         self.iterations += k
         return out
 
@@ -796,19 +872,9 @@ class Engine:
         if max_steps <= 0:
             return []
         if layer == 0:
-            layers, g, lane, cap = self._goal, 0, 0, self.goal_cap
-            sr, sc = self.goal[0] + PAD, self.goal[1] + PAD
-            origin = (-PAD, -PAD)
-        else:
-            self._check_node(layer - 1)
-            g, lane = divmod(layer - 1, LANES)
-            layers, cap = self._windows, self.node_cap
-            sr = sc = self.radius + PAD
-            origin = tuple(int(v) for v in self.nodes[layer - 1] - self.radius - PAD)
-        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
-        _trace(layers.values, layers.pen, g, lane, start[0] - origin[0], start[1] - origin[1], sr, sc, cap, out,
-               layers.lanes, self.neighbourhood, self.corner_cutting)
-        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
+            return self._goal.trace(0, start, max_steps)
+        self._check_node(layer - 1)
+        return self._windows.trace(layer - 1, start, max_steps)
 
     def _check_node(self, node: int) -> None:
         if not 0 <= node < len(self.nodes):
