@@ -16,12 +16,14 @@ import numpy as np
 
 class Mode(str, Enum):
     """What the robot did on a tick: followed the goal layer (``DP``), a backup subgoal's layer (``BACKUP``), the
-    exact field (``ORACLE``), D* Lite's search (``DSTAR``), or stayed where it was (``WAIT``). Modes compare equal to
-    their strings ("dp", "backup", ...) and are written as those strings."""
+    exact field (``ORACLE``), D* Lite's search (``DSTAR``), stayed where it was (``WAIT``), or stayed because a box is
+    predicted to enter the cell it would have moved to (``YIELD``, with obstacle prediction on). Modes compare equal
+    to their strings ("dp", "backup", ...) and are written as those strings."""
 
     DP = "dp"
     BACKUP = "backup"
     WAIT = "wait"
+    YIELD = "yield"
     ORACLE = "oracle"
     DSTAR = "d*lite"
 

@@ -708,6 +708,12 @@ def _cells_array(cells) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
 
 
+def _edit(cells, occupied) -> tuple[np.ndarray, np.ndarray]:
+    """Cells as kernels take them and one occupancy flag per cell."""
+    cells = _cells_array(cells)
+    return cells, np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+
+
 def _device(array: np.ndarray):
     """A Taichi ndarray holding a copy of an int32 or float32 numpy array."""
     out = ti.ndarray(ti.i32 if array.dtype == np.int32 else ti.f32, array.shape)
@@ -810,13 +816,21 @@ class Engine:
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels."""
-        cells = _cells_array(cells)
+        cells, occupied = _edit(cells, occupied)
+        self.occupied[cells[:, 0], cells[:, 1]] = occupied
+        self._paint(self._layers, cells, occupied)
+
+    def set_node_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
+        """Mark ``cells`` occupied or free in the node layers only (e.g. cells a box is predicted to enter); the goal
+        layer and :attr:`occupied` keep the map as it is."""
+        self._paint(self._layers[1:], *_edit(cells, occupied))
+
+    @staticmethod
+    def _paint(kinds: list, cells: np.ndarray, occupied: np.ndarray) -> None:
         if not len(cells):
             return
-        occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
-        self.occupied[cells[:, 0], cells[:, 1]] = occupied
         values = np.where(occupied, np.inf, 0.0).astype(np.float32)
-        for layers in self._layers:
+        for layers in kinds:
             layers.paint(cells, values)
 
     def set_goal(self, goal: tuple[int, int]) -> None:

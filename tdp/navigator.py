@@ -19,8 +19,9 @@ from .engine import Engine
 from .field import cells_from, check_cap
 from .grid import GridMap
 from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, place_nodes
+from .predict import MotionPredictor
 from .search import uniform_cost_search
-from .stencil import check_neighbourhood
+from .stencil import check_neighbourhood, moves
 
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
@@ -52,6 +53,9 @@ class NavigatorConfig:
     switch_back: "evidence" (leave a backup as soon as the goal layer's successors reach G by a route no longer
     than the backup's estimate, and never start one that the goal layer already beats) or "paper" (only after
     ||Path|| DP iterations, section 4.3).
+    predict_ticks: obstacle prediction's horizon H in ticks (0: off; ARCHITECTURE §5.7): moving boxes are tracked
+    from the map updates, the node layers see the cells they are predicted to sweep over in the next H ticks, and
+    the robot does not step into a cell a box is predicted to enter at the next tick.
     """
 
     accelerating: bool = True
@@ -67,6 +71,7 @@ class NavigatorConfig:
     budget_ms: float | None = None
     placement: str = "free"
     switch_back: str = "evidence"
+    predict_ticks: int = 0
 
     def __post_init__(self):
         def normalised(name: str, value) -> None:  # the checked value, as a plain Python int, float or bool
@@ -90,6 +95,7 @@ class NavigatorConfig:
             raise ValueError(f"placement must be one of {PLACEMENTS}, got {self.placement!r}")
         if self.switch_back not in SWITCH_BACK:
             raise ValueError(f"switch_back must be one of {SWITCH_BACK}, got {self.switch_back!r}")
+        normalised("predict_ticks", checks.integer(self.predict_ticks, "predict_ticks", 0))
 
     @property
     def rise(self) -> float:
@@ -144,6 +150,13 @@ class Navigator:
         self._readings: tuple[tuple, np.ndarray] | None = None
         self._edits = 0  # map edits and setups so far: they change the layers between iterations
         self.last_iterations = 0  # DP iterations the last tick ran
+        # Obstacle prediction (predict_ticks > 0): the tracker, the ticks so far, the cells that became occupied
+        # since the last tick, and the cells the node layers hold occupied on prediction alone.
+        self.predictor = MotionPredictor(grid.shape) if config.predict_ticks else None
+        self._ticks = 0
+        self._became_occupied: list[np.ndarray] = []
+        self._predicted = np.zeros(grid.shape, bool)
+        self._predicted_cells = np.zeros((0, 2), np.int64)
 
     # -- inputs ------------------------------------------------------------------------------------------------
     @property
@@ -160,9 +173,19 @@ class Navigator:
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
-        self.engine.set_cells(cells, occupied)
+        flags = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        if self.predictor is not None:
+            self._became_occupied.append(cells[flags & ~self.engine.occupied[cells[:, 0], cells[:, 1]]])
+        self.engine.set_cells(cells, flags)
+        if self.predictor is not None:  # the node layers keep the predicted cells occupied
+            self.engine.set_node_cells(cells[self._predicted[cells[:, 0], cells[:, 1]]], True)
         self._edits += 1
-        covered = self.engine.occupied[self.nodes[:, 0], self.nodes[:, 1]]
+        self._update_cover()
+
+    def _update_cover(self) -> None:
+        """Nodes on an occupied (or predicted) cell leave the graph; uncovered ones return once settled."""
+        rows, cols = self.nodes[:, 0], self.nodes[:, 1]
+        covered = self.engine.occupied[rows, cols] | self._predicted[rows, cols]
         uncovered = ~covered & np.isinf(self._active_from)
         self._active_from[covered] = np.inf
         self._active_from[uncovered] = self.engine.iterations + self._settling
@@ -186,6 +209,10 @@ class Navigator:
         the goal layer when the node graph has no route (the search is retried every tick) and waits only when
         neither offers a move (ARCHITECTURE §5.5).
         """
+        began = time.perf_counter()
+        if self.predictor is not None:
+            self._predict()
+        predict_s = time.perf_counter() - began
         new_pairs, dp_s, monitor_s = self._run_iterations()
         began = time.perf_counter()
         result = TickResult(mode=Mode.DP, next_cell=None, detections=self._classify(new_pairs))
@@ -203,10 +230,65 @@ class Navigator:
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
         result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
+        if self.predictor is not None and moving:
+            began = time.perf_counter()
+            result.next_cell = self._clear_of_boxes(result.next_cell)
+            if result.next_cell is None and self.robot != self.goal:
+                result.mode = Mode.YIELD
+            predict_s += time.perf_counter() - began
         result.subgoal = self._subgoal if self.state == "backup" else None
         result.timings = {"dp": dp_s, "monitor": monitor_s, "search": search_s}
+        if self.predictor is not None:
+            result.timings["predict"] = predict_s
         result.iterations = self.last_iterations
         return result
+
+    def _predict(self) -> None:
+        """Feed the tracker this tick's newly occupied cells and hold the cells the boxes are predicted to sweep over
+        in the next ``predict_ticks`` ticks occupied in the node layers (ARCHITECTURE §5.7)."""
+        self._ticks += 1
+        became = np.vstack(self._became_occupied) if self._became_occupied else np.zeros((0, 2), np.int64)
+        self._became_occupied = []
+        self.predictor.observe(self._ticks, became)
+        cells = self.predictor.entering(self._ticks, self.config.predict_ticks)
+        cells = cells[~self.engine.occupied[cells[:, 0], cells[:, 1]]]
+        old = self._predicted_cells
+        already = self._predicted[cells[:, 0], cells[:, 1]]
+        self._predicted[old[:, 0], old[:, 1]] = False
+        self._predicted[cells[:, 0], cells[:, 1]] = True
+        freed = old[~self._predicted[old[:, 0], old[:, 1]]]
+        self.engine.set_node_cells(freed, False)
+        self.engine.set_node_cells(cells[~already], True)
+        if len(freed) or not already.all():
+            self._edits += 1
+        self._predicted_cells = cells
+        self._update_cover()
+
+    def _clear_of_boxes(self, wanted: tuple[int, int] | None) -> tuple[int, int] | None:
+        """The move to make given the boxes predicted to enter cells at the next tick: ``wanted`` if its cell is
+        clear; else stay (yield) if the robot's cell is clear; else the clear legal move with the lowest value of
+        the layer the robot follows; ``wanted`` when none is clear."""
+        danger = set(map(tuple, self.predictor.entering(self._ticks, 1).tolist()))
+        if wanted is not None and wanted not in danger:
+            return wanted
+        if self.robot not in danger:
+            return None
+        options = [(cell, cost) for cell, cost in self._legal_moves() if cell not in danger]
+        if not options:
+            return wanted
+        layer = 1 + self._subgoal if self.state == "backup" and self._subgoal < len(self.nodes) else 0
+        values = self.engine.sample([cell for cell, _ in options])[:, layer]
+        return options[int(np.argmin(values + np.array([cost for _, cost in options])))][0]
+
+    def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
+        """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""
+        (r, c), occupied = self.robot, self.engine.occupied
+        found = []
+        for m in moves(self.config.neighbourhood, self.config.corner_cutting):
+            cells = [(r + m.dr, c + m.dc)] + [(r + dr, c + dc) for dr, dc in m.crossed]
+            if all(0 <= i < occupied.shape[0] and 0 <= j < occupied.shape[1] and not occupied[i, j] for i, j in cells):
+                found.append(((r + m.dr, c + m.dc), m.cost))
+        return found
 
     def _run_iterations(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
         """The tick's DP iterations - K, or with ``budget_ms`` as many as fit in the budget (at least one) - with

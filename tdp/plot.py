@@ -57,7 +57,8 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
     return save_figure(fig, out)
 
 
-MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "oracle": "tab:gray"}
+MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "yield": "tab:purple",
+                "oracle": "tab:gray"}
 
 
 def box_patch(plt, box, **style):

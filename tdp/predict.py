@@ -1,0 +1,118 @@
+"""Obstacle motion from the map updates alone: the paper's closing suggestion, "obstacle motion may be extrapolated
+for early blockage predictions" (ARCHITECTURE §5.7).
+
+A box moving over the grid shows, tick by tick, a leading edge: the cells that become occupied. Those cells are
+grouped into 8-connected clusters; a cluster is matched to the track whose last edge it could have come from (a
+similar number of cells, a centre within ``max_speed`` cells per elapsed tick), and the displacement of the
+centres over the ticks between them is the track's velocity. A track whose edge is not seen again within the
+time it takes to move one cell (at its velocity, plus a tick) has stopped and is dropped.
+
+The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
+learns of each from the next edge it sees, one or two ticks late), it knows nothing of obstacles that do not move,
+and a new or reversed box is predicted only from its second edge on. No world ids are used.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Offsets of the 8-neighbourhood, for clustering the cells that became occupied.
+_AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
+
+
+@dataclass
+class Track:
+    """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, and its
+    ``velocity`` (rows, cols per tick; None until it has been matched once)."""
+
+    edge: np.ndarray
+    tick: int
+    velocity: np.ndarray | None = None
+
+    @property
+    def centre(self) -> np.ndarray:
+        return self.edge.mean(axis=0)
+
+    def alive_at(self, tick: int, min_speed: float) -> bool:
+        """Whether the obstacle is still taken to be moving at ``tick``: its next edge is due within the ticks a
+        one-cell move takes at its speed (at ``min_speed`` while its speed is not known yet), plus one."""
+        speed = min_speed if self.velocity is None else float(np.abs(self.velocity).max())
+        return speed > 0 and tick - self.tick <= math.ceil(1.0 / max(speed, min_speed)) + 1
+
+
+class MotionPredictor:
+    """Tracks moving obstacles from the cells that become occupied each tick and predicts the cells they enter.
+
+    ``max_speed`` and ``min_speed``: the fastest and slowest obstacles to track, in cells per tick (a faster one is
+    seen as a new obstacle each tick, a slower one as one that stopped, and neither is predicted)."""
+
+    def __init__(self, shape: tuple[int, int], max_speed: float = 2.0, min_speed: float = 0.25):
+        self.shape = (int(shape[0]), int(shape[1]))
+        self.max_speed, self.min_speed = float(max_speed), float(min_speed)
+        self.tracks: list[Track] = []
+
+    def observe(self, tick: int, became_occupied: np.ndarray) -> None:
+        """Take the cells ((n, 2) row, col) that became occupied at ``tick`` (ticks must not go back)."""
+        previous = [track for track in self.tracks if track.alive_at(tick, self.min_speed)]
+        matched: set[int] = set()
+        tracks = []
+        for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
+            index = self._match(edge, tick, previous, matched)
+            velocity = None
+            if index is not None:
+                matched.add(index)
+                velocity = (edge.mean(axis=0) - previous[index].centre) / (tick - previous[index].tick)
+            tracks.append(Track(edge, tick, velocity))
+        self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
+
+    def _match(self, edge: np.ndarray, tick: int, previous: list[Track], taken: set[int]) -> int | None:
+        """The previous track this edge most plausibly continues, or None."""
+        best, best_distance = None, math.inf
+        for i, track in enumerate(previous):
+            elapsed = tick - track.tick
+            if i in taken or elapsed <= 0 or not 0.5 <= len(edge) / len(track.edge) <= 2.0:
+                continue
+            distance = float(np.abs(edge.mean(axis=0) - track.centre).max())
+            if 0 < distance <= self.max_speed * elapsed + 0.5 and distance < best_distance:
+                best, best_distance = i, distance
+        return best
+
+    def entering(self, tick: int, horizon: int) -> np.ndarray:
+        """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
+        after ``tick`` up to ``tick + horizon``, at constant velocity; the edges' current cells left out."""
+        found = []
+        for track in self.tracks:
+            if track.velocity is None or not track.alive_at(tick, self.min_speed):
+                continue
+            now = track.velocity * (tick - track.tick)
+            then = track.velocity * (tick + horizon - track.tick)
+            steps = max(1, math.ceil(float(np.abs(then - now).max())))
+            offsets = {tuple(np.rint(now + (then - now) * s / steps).astype(int)) for s in range(steps + 1)}
+            offsets.discard((0, 0))
+            found += [track.edge + np.array(offset) for offset in offsets]
+        if not found:
+            return np.zeros((0, 2), np.int64)
+        cells = np.unique(np.vstack(found), axis=0)
+        inside = (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
+        return cells[inside]
+
+
+def clusters(cells: np.ndarray) -> list[np.ndarray]:
+    """The 8-connected groups of ``cells`` ((n, 2) row, col), each as an (m, 2) array."""
+    left = {tuple(map(int, cell)) for cell in cells}
+    groups = []
+    while left:
+        frontier = [left.pop()]
+        group = list(frontier)
+        while frontier:
+            r, c = frontier.pop()
+            for dr, dc in _AROUND:
+                near = (r + dr, c + dc)
+                if near in left:
+                    left.remove(near)
+                    frontier.append(near)
+                    group.append(near)
+        groups.append(np.array(sorted(group), np.int64))
+    return groups
