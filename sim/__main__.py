@@ -14,7 +14,8 @@ from pathlib import Path
 def _config(args: argparse.Namespace, accelerating: bool):
     import tdp
 
-    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates, budget_ms=args.budget_ms)
+    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates, budget_ms=args.budget_ms,
+                               predict_ticks=args.predict_ticks, avoid_boxes=args.avoid_boxes)
 
 
 def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str,
@@ -115,6 +116,10 @@ def parser() -> argparse.ArgumentParser:
         sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
         sub.add_argument("--budget-ms", type=float, default=None,
                          help="a planning budget per control tick instead of K (at most the world's tick_s)")
+        sub.add_argument("--predict-ticks", type=int, default=0,
+                         help="obstacle prediction's horizon in ticks for the node layers (default 0: off)")
+        sub.add_argument("--avoid-boxes", action="store_true",
+                         help="yield or step aside instead of moving into a cell a box is about to enter")
         sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
         sub.add_argument("--animate", action="store_true",
                          help="also write animation.gif from the simulator's own camera (headless)")

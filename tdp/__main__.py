@@ -34,7 +34,8 @@ def run(args: argparse.Namespace) -> int:
     config = tdp.NavigatorConfig(accelerating=not args.no_accelerating, nodes=args.nodes, vision=args.vision,
                                  updates_per_move=args.updates, detect_window=args.detect_window,
                                  detect_rise=args.detect_rise, neighbourhood=args.neighbourhood,
-                                 corner_cutting=args.corner_cutting, budget_ms=args.budget_ms)
+                                 corner_cutting=args.corner_cutting, budget_ms=args.budget_ms,
+                                 predict_ticks=args.predict_ticks, avoid_boxes=args.avoid_boxes)
     print(f"running {scenario.name} ({'accelerating nodes' if config.accelerating else 'plain DP'}, "
           f"K = {config.updates_per_move})", flush=True)
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
@@ -131,6 +132,10 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--vision", type=float, default=2.5, help="DmaxQ / node spacing (default 2.5)")
     r.add_argument("--detect-window", type=int, default=6, help="J (default 6)")
     r.add_argument("--detect-rise", type=float, default=None, help="U (default J - 1)")
+    r.add_argument("--predict-ticks", type=int, default=0,
+                   help="obstacle prediction's horizon in ticks for the node layers (default 0: off)")
+    r.add_argument("--avoid-boxes", action="store_true",
+                   help="yield or step aside instead of moving into a cell a box is about to enter")
     r.add_argument("--neighbourhood", type=int, default=16, choices=(4, 8, 16))
     r.add_argument("--corner-cutting", action="store_true")
     r.add_argument("--max-ticks", type=int, default=None)

@@ -33,6 +33,8 @@ EVIDENCE_SLACK = 0.1
 #: How far (cells) a value of the goal layer may sit below its successor's plus the move and still count as
 #: settled: float rounding only; a value still rising after a change is short by about a cell or more.
 SETTLED_CELLS = 0.25
+#: With avoid_boxes, a step aside prefers cells no box is predicted to enter within this many ticks.
+AVOID_TICKS = 2
 
 
 @dataclass(frozen=True)
@@ -54,8 +56,10 @@ class NavigatorConfig:
     than the backup's estimate, and never start one that the goal layer already beats) or "paper" (only after
     ||Path|| DP iterations, section 4.3).
     predict_ticks: obstacle prediction's horizon H in ticks (0: off; ARCHITECTURE §5.7): moving boxes are tracked
-    from the map updates, the node layers see the cells they are predicted to sweep over in the next H ticks, and
-    the robot does not step into a cell a box is predicted to enter at the next tick.
+    from the map updates and the node layers (not the goal layer) see the cells they are predicted to sweep over
+    in the next H ticks, so the monitor flags a passage a box is about to close.
+    avoid_boxes: with the same tracking, the robot does not step into a cell a box is predicted to enter at the next
+    tick: it yields (stays) or, if a box is about to enter its own cell, steps aside.
     """
 
     accelerating: bool = True
@@ -72,6 +76,7 @@ class NavigatorConfig:
     placement: str = "free"
     switch_back: str = "evidence"
     predict_ticks: int = 0
+    avoid_boxes: bool = False
 
     def __post_init__(self):
         def normalised(name: str, value) -> None:  # the checked value, as a plain Python int, float or bool
@@ -96,6 +101,7 @@ class NavigatorConfig:
         if self.switch_back not in SWITCH_BACK:
             raise ValueError(f"switch_back must be one of {SWITCH_BACK}, got {self.switch_back!r}")
         normalised("predict_ticks", checks.integer(self.predict_ticks, "predict_ticks", 0))
+        normalised("avoid_boxes", checks.flag(self.avoid_boxes, "avoid_boxes"))
 
     @property
     def rise(self) -> float:
@@ -142,6 +148,7 @@ class Navigator:
         self._since_detection = 0
         self._subgoal: int | None = None
         self._cost_to_goal: dict[int, float] = {}  # along the last backup path: cost from each vertex to G
+        self._backup_path: list[int] = []  # the last backup path's vertices, R first
         # Iteration from which each node is active: inf while covered, and after it is uncovered, long enough for
         # its layer to settle (phantom values rise at least a cell per iteration, true ones arrive within DmaxQ).
         self._active_from = np.zeros(len(self.nodes))
@@ -152,7 +159,7 @@ class Navigator:
         self.last_iterations = 0  # DP iterations the last tick ran
         # Obstacle prediction (predict_ticks > 0): the tracker, the ticks so far, the cells that became occupied
         # since the last tick, and the cells the node layers hold occupied on prediction alone.
-        self.predictor = MotionPredictor(grid.shape) if config.predict_ticks else None
+        self.predictor = MotionPredictor(grid.shape) if config.predict_ticks or config.avoid_boxes else None
         self._ticks = 0
         self._became_occupied: list[np.ndarray] = []
         self._predicted = np.zeros(grid.shape, bool)
@@ -230,7 +237,7 @@ class Navigator:
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
         result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
-        if self.predictor is not None and moving:
+        if self.config.avoid_boxes and moving:
             began = time.perf_counter()
             result.next_cell = self._clear_of_boxes(result.next_cell)
             if result.next_cell is None and self.robot != self.goal:
@@ -256,7 +263,7 @@ class Navigator:
         already = self._predicted[cells[:, 0], cells[:, 1]]
         self._predicted[old[:, 0], old[:, 1]] = False
         self._predicted[cells[:, 0], cells[:, 1]] = True
-        freed = old[~self._predicted[old[:, 0], old[:, 1]]]
+        freed = old[~self._predicted[old[:, 0], old[:, 1]] & ~self.engine.occupied[old[:, 0], old[:, 1]]]
         self.engine.set_node_cells(freed, False)
         self.engine.set_node_cells(cells[~already], True)
         if len(freed) or not already.all():
@@ -265,20 +272,23 @@ class Navigator:
         self._update_cover()
 
     def _clear_of_boxes(self, wanted: tuple[int, int] | None) -> tuple[int, int] | None:
-        """The move to make given the boxes predicted to enter cells at the next tick: ``wanted`` if its cell is
-        clear; else stay (yield) if the robot's cell is clear; else the clear legal move with the lowest value of
-        the layer the robot follows; ``wanted`` when none is clear."""
-        danger = set(map(tuple, self.predictor.entering(self._ticks, 1).tolist()))
-        if wanted is not None and wanted not in danger:
+        """The move to make given the cells the tracked boxes are predicted to enter (ARCHITECTURE §5.7): ``wanted``
+        if no box enters its cell at the next tick; else stay (yield) if none enters the robot's; else step aside to
+        a legal move that no box enters at the next tick - one that none enters within AVOID_TICKS if there is
+        such, the lowest value of the followed layer plus the move's length among them; ``wanted`` when every move
+        is entered at the next tick."""
+        arrivals = self.predictor.arrivals(self._ticks, AVOID_TICKS)
+        if wanted is not None and arrivals.get(wanted, math.inf) > 1:
             return wanted
-        if self.robot not in danger:
+        if arrivals.get(self.robot, math.inf) > 1:
             return None
-        options = [(cell, cost) for cell, cost in self._legal_moves() if cell not in danger]
+        options = [(cell, cost) for cell, cost in self._legal_moves() if arrivals.get(cell, math.inf) > 1]
         if not options:
             return wanted
         layer = 1 + self._subgoal if self.state == "backup" and self._subgoal < len(self.nodes) else 0
         values = self.engine.sample([cell for cell, _ in options])[:, layer]
-        return options[int(np.argmin(values + np.array([cost for _, cost in options])))][0]
+        best = max(range(len(options)), key=lambda i: (options[i][0] not in arrivals, -(values[i] + options[i][1])))
+        return options[best][0]
 
     def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
         """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""
@@ -367,13 +377,33 @@ class Navigator:
         return [self.robot] + self.engine.trace(0, self.robot, limit)
 
     def _classify(self, new_pairs) -> list[Detection]:
-        """Mark each newly blocked pair relevant if its segment passes within s cells of the current path."""
+        """Mark each newly blocked pair relevant if its segment passes within s cells of the route the robot
+        follows (:meth:`_followed_route`)."""
         if not new_pairs:
             return []
-        path = np.array(self.current_path())
+        path = self._followed_route()
         return [Detection(iteration, pair, segment_near_path(self.nodes[pair[0]], self.nodes[pair[1]], path,
                                                               self.spacing))
                 for iteration, pair in new_pairs]
+
+    def _followed_route(self) -> np.ndarray:
+        """Cells (m, 2) of the way the robot is going: its current DP path and, following a backup, the subgoal
+        layer's successors from R and the straight legs through the rest of the backup path to G - a cut on the
+        detour matters as much as one on the DP's route."""
+        cells = self.current_path()
+        if self.state == "backup":
+            cells += self.route(max(1, int(4 * self.dmax_q)))
+            corners = [self._vertex_cell(v) for v in self._backup_path[self._backup_path.index(self._subgoal):]]
+            for a, b in zip(corners, corners[1:]):
+                steps = int(max(abs(b[0] - a[0]), abs(b[1] - a[1]))) + 1
+                cells += [tuple(cell) for cell in np.rint(np.linspace(a, b, steps)).astype(int)]
+        return np.array(cells)
+
+    def _vertex_cell(self, vertex: int) -> tuple[int, int]:
+        """The cell of a graph vertex: node j, R (n) or G (n + 1)."""
+        if vertex < len(self.nodes):
+            return tuple(int(v) for v in self.nodes[vertex])
+        return self.robot if vertex == len(self.nodes) else self.goal
 
     def _update_state(self, result: TickResult) -> None:
         """Start a backup on a relevant blockage, re-search near the subgoal, switch back after ||Path|| or, with
@@ -405,7 +435,7 @@ class Navigator:
         budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
         limit = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
         chain = [self.robot] + self.engine.trace(0, self.robot, limit)
-        if chain[-1] != self.goal:
+        if chain[-1] != self.goal or self._predicted[tuple(np.array(chain).T)].any():
             return False
         steps = np.hypot(*np.diff(np.array(chain), axis=0).T)
         if steps.sum() > budget:
@@ -435,6 +465,7 @@ class Navigator:
         result.backup_path, result.backup_cost = path, cost
         self.state = "backup"
         self._subgoal = choose_subgoal(path, graph)
+        self._backup_path = path
         remaining = 0.0
         self._cost_to_goal = {path[-1]: 0.0}
         for a, b in zip(path[-2::-1], path[:0:-1]):

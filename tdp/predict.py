@@ -22,14 +22,21 @@ import numpy as np
 _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
 
 
+#: Edges a track remembers: its velocity is the mean over them (a box at 0.3 cells per tick shows edges 3, 3 and 4
+#: ticks apart; one interval alone says 0.33 or 0.25).
+HISTORY = 4
+
+
 @dataclass
 class Track:
-    """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, and its
-    ``velocity`` (rows, cols per tick; None until it has been matched once)."""
+    """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, its ``velocity``
+    (rows, cols per tick, over its last HISTORY edges; None until it has been matched once), and those edges'
+    (tick, centre)."""
 
     edge: np.ndarray
     tick: int
     velocity: np.ndarray | None = None
+    seen: tuple = ()
 
     @property
     def centre(self) -> np.ndarray:
@@ -60,11 +67,13 @@ class MotionPredictor:
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
             index = self._match(edge, tick, previous, matched)
+            seen = ((tick, edge.mean(axis=0)),)
             velocity = None
             if index is not None:
                 matched.add(index)
-                velocity = (edge.mean(axis=0) - previous[index].centre) / (tick - previous[index].tick)
-            tracks.append(Track(edge, tick, velocity))
+                seen = (previous[index].seen + seen)[-HISTORY:]
+                velocity = (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0])
+            tracks.append(Track(edge, tick, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _match(self, edge: np.ndarray, tick: int, previous: list[Track], taken: set[int]) -> int | None:
@@ -79,24 +88,63 @@ class MotionPredictor:
                 best, best_distance = i, distance
         return best
 
+    def arrivals(self, tick: int, ahead: int) -> dict[tuple[int, int], int]:
+        """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
+        first such tick (1 = the next). A box slower than a cell per tick moves a cell at a time, every 1 / speed
+        ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 / speed) ticks after
+        it, and only those ticks are flagged (a box seen every other tick is not expected every tick); a faster one
+        sweeps as in :meth:`entering`."""
+        found: dict[tuple[int, int], int] = {}
+        for track in self.tracks:
+            if track.velocity is None or not track.alive_at(tick, self.min_speed):
+                continue
+            for step in range(1, ahead + 1):
+                for cells in self._moved_into(track, tick - track.tick + step):
+                    for cell in map(tuple, cells.tolist()):
+                        if 0 <= cell[0] < self.shape[0] and 0 <= cell[1] < self.shape[1]:
+                            found.setdefault(cell, step)
+        return found
+
+    @staticmethod
+    def _moved_into(track: Track, elapsed: int) -> list[np.ndarray]:
+        """The cells a track's edge may move into at ``elapsed`` ticks after its last edge was seen."""
+        speed = float(np.abs(track.velocity).max())
+        if speed >= 1.0:
+            return [track.edge + offset for offset in _swept_offsets(track.velocity * (elapsed - 1),
+                                                                     track.velocity * elapsed)]
+        period = 1.0 / speed
+        latest_moves = elapsed // math.floor(period)  # moves done by now at the most,
+        earliest_moves = (elapsed - 1) // math.ceil(period)  # and by the tick before at the least
+        direction = track.velocity / speed
+        steps = {tuple(step) for step in np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64)}
+        return [track.edge + moves * np.array(step) for moves in range(earliest_moves + 1, latest_moves + 1)
+                for step in steps if any(step)]
+
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
         after ``tick`` up to ``tick + horizon``, at constant velocity; the edges' current cells left out."""
         found = []
-        for track in self.tracks:
+        for track in self.tracks if horizon >= 1 else []:
             if track.velocity is None or not track.alive_at(tick, self.min_speed):
                 continue
-            now = track.velocity * (tick - track.tick)
-            then = track.velocity * (tick + horizon - track.tick)
-            steps = max(1, math.ceil(float(np.abs(then - now).max())))
-            offsets = {tuple(np.rint(now + (then - now) * s / steps).astype(int)) for s in range(steps + 1)}
-            offsets.discard((0, 0))
-            found += [track.edge + np.array(offset) for offset in offsets]
+            found += [track.edge + offset for offset in _swept_offsets(track.velocity * (tick - track.tick),
+                                                                        track.velocity * (tick + horizon - track.tick))]
         if not found:
             return np.zeros((0, 2), np.int64)
         cells = np.unique(np.vstack(found), axis=0)
         inside = (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
         return cells[inside]
+
+
+def _swept_offsets(now: np.ndarray, then: np.ndarray) -> list[np.ndarray]:
+    """The whole-cell offsets an edge displaced from ``now`` to ``then`` (cells, fractional) may occupy on the way:
+    both the floor and the ceiling of each coordinate along the segment, since a world may round either way;
+    (0, 0), where the edge is, left out."""
+    steps = 2 * max(1, math.ceil(float(np.abs(then - now).max())))
+    points = now + (then - now) * (np.arange(steps + 1)[:, None] / steps)
+    corners = np.vstack([np.stack([rows(points[:, 0]), cols(points[:, 1])], axis=1)
+                         for rows in (np.floor, np.ceil) for cols in (np.floor, np.ceil)]).astype(np.int64)
+    return [offset for offset in np.unique(corners, axis=0) if offset.any()]
 
 
 def clusters(cells: np.ndarray) -> list[np.ndarray]:

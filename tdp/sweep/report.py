@@ -12,8 +12,8 @@ import numpy as np
 from .spec import STENCIL_FIELDS, Spec
 
 WORLD_COLUMNS = ("world", "group", "size", "seed", "planner")
-METRICS = ("reached", "ticks", "length", "ratio", "collisions", "hits", "waits", "backup_ticks", "detections",
-           "relevant_detections", "nodes_placed", "setup_s", "ms_median", "ms_mean", "ms_p95", "ms_max")
+METRICS = ("reached", "ticks", "length", "ratio", "collisions", "hits", "waits", "yields", "backup_ticks",
+           "detections", "relevant_detections", "nodes_placed", "setup_s", "ms_median", "ms_mean", "ms_p95", "ms_max")
 
 
 def tidy(spec: Spec, rows: list[dict]) -> list[dict]:

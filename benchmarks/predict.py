@@ -1,0 +1,111 @@
+"""Obstacle prediction (NavigatorConfig.predict_ticks, avoid_boxes) on and off, on random worlds and the named
+blockage scenarios.
+
+    python -m benchmarks.predict [--quick] [--workers N] [--resume]
+
+A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on a local Dask cluster: the six
+random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named scenarios moving-blockage and
+sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
+and box avoidance off or on. Per group, K and setting: worlds, reached %, collisions, hits (ticks a box sat on the
+robot), mean and max ratio to the oracle (over the worlds the oracle reached), detections and the fraction the exact pair distances justify (as in
+``benchmarks.worlds``; a detection made ahead of a predicted closure counts as justified only if the closure
+comes within the look-back window), yields, and for the named scenarios the ticks from the change to the turn.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+import tdp
+from benchmarks.common import print_table, run_spec, save_results, sweep_parser, turn_and_closest, unblocked_route
+from benchmarks.worlds import truth_metrics
+
+_ROUTES: dict[str, list] = {}
+#: The settings compared, as the tables name them: (predict_ticks, avoid_boxes).
+SETTINGS = {(0, False): "off", (4, False): "predict 4", (0, True): "avoid", (4, True): "predict 4 + avoid"}
+
+
+def prediction_metrics(scenario: tdp.Scenario, record: dict, planner, config: tdp.NavigatorConfig) -> dict:
+    """Sweep metric: :func:`benchmarks.worlds.truth_metrics`, and for a scenario with a blocking box the ticks
+    from the change to the turn and the closest approach (:func:`benchmarks.common.turn_and_closest`)."""
+    row = truth_metrics(scenario, record, planner, config)
+    if scenario.blocking is not None and scenario.change_tick is not None:
+        if scenario.name not in _ROUTES:
+            _ROUTES[scenario.name] = unblocked_route(scenario)
+        row.update(turn_and_closest(scenario, record["trajectory"], _ROUTES[scenario.name]))
+    return row
+
+
+def summarise(table: list[dict]) -> list[dict]:
+    """Per group, K and setting, over the episodes of accelerating nodes."""
+    out = []
+    runs = [r for r in table if r["planner"] == "accelerating"]
+    for group in dict.fromkeys(r["group"] for r in runs):
+        for k in sorted({r["updates_per_move"] for r in runs}):
+            for (ticks, avoid), label in SETTINGS.items():
+                mine = [r for r in runs if r["group"] == group and r["updates_per_move"] == k
+                        and r["predict_ticks"] == ticks and r["avoid_boxes"] == avoid]
+                if not mine:
+                    continue
+                ratios = [r["ratio"] for r in mine if r["reached"] and r["ratio"] is not None
+                          and math.isfinite(r["ratio"])]
+                turns = [r["turn_after"] for r in mine if r.get("turn_after") is not None]
+                out.append({"group": group, "k": k, "setting": label, "worlds": len(mine),
+                            "reached_pct": 100.0 * sum(r["reached"] for r in mine) / len(mine),
+                            "collisions": sum(r["collisions"] for r in mine), "hits": sum(r["hits"] for r in mine),
+                            "mean_ratio": float(np.mean(ratios)) if ratios else math.nan,
+                            "max_ratio": float(np.max(ratios)) if ratios else math.nan,
+                            "detections": sum(r["detections"] for r in mine),
+                            "justified": sum(r.get("justified", 0) for r in mine),
+                            "yields": sum(r["yields"] for r in mine),
+                            "stuck_waits": sum(r.get("stuck_waits", 0) for r in mine),
+                            "turn_after": float(np.mean(turns)) if turns else None,
+                            "ms_median": float(np.median([r["ms_median"] for r in mine]))})
+    return out
+
+
+def figure(summary: list[dict], path) -> None:
+    """Hits and mean ratio per group and setting, one panel pair per K."""
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
+    groups = list(dict.fromkeys(s["group"] for s in summary))
+    ks = list(dict.fromkeys(s["k"] for s in summary))
+    labels = list(SETTINGS.values())
+    fig, axes = plt.subplots(2, len(ks), figsize=(6 * len(ks), 7), squeeze=False)
+    width = 0.8 / len(labels)
+    for column, k in enumerate(ks):
+        for row, (field, title) in enumerate((("hits", "hits (ticks a box sat on the robot)"),
+                                              ("mean_ratio", "mean path length / oracle"))):
+            ax = axes[row][column]
+            for j, label in enumerate(labels):
+                values = [next((s[field] for s in summary if s["group"] == g and s["k"] == k
+                                and s["setting"] == label), math.nan) for g in groups]
+                ax.bar(np.arange(len(groups)) + j * width, values, width, label=label)
+            ax.set_xticks(np.arange(len(groups)) + 0.4 - width / 2)
+            ax.set_xticklabels(groups, rotation=20, fontsize=8)
+            ax.set_title(f"K = {k}: {title}", fontsize=9)
+            if field == "mean_ratio":
+                ax.set_ylim(0.9, None)
+            ax.legend(fontsize=7)
+    save_figure(fig, path)
+
+
+def main() -> None:
+    args = sweep_parser(__doc__, "one per core").parse_args()
+    spec, _, table = run_spec("predict", args, serial=False)
+    summary = summarise(table)
+    print_table(["group", "K", "setting", "worlds", "reached %", "coll.", "hits", "mean ratio", "max ratio",
+                 "detections", "justified", "yields", "turn after", "ms/tick"],
+                [[s["group"], str(s["k"]), s["setting"], str(s["worlds"]), f"{s['reached_pct']:.0f}",
+                  str(s["collisions"]), str(s["hits"]), f"{s['mean_ratio']:.3f}", f"{s['max_ratio']:.3f}",
+                  str(s["detections"]), f"{s['justified'] / s['detections']:.0%}" if s["detections"] else "-",
+                  str(s["yields"]), "-" if s["turn_after"] is None else f"{s['turn_after']:.0f}",
+                  f"{s['ms_median']:.2f}"] for s in summary])
+    save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", "summary": summary, "rows": table},
+                 lambda png: figure(summary, png))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,147 @@
+"""Obstacle prediction: the tracker on hand-made motions, and the navigator with prediction on."""
+import numpy as np
+import pytest
+
+import tdp
+from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
+from tdp.contract import WorldFeed
+from tdp.predict import MotionPredictor, clusters
+from tdp.random_worlds import make_world
+
+
+def column(col: int, rows=range(4, 7)) -> np.ndarray:
+    return np.array([(r, col) for r in rows])
+
+
+def cells_of(array: np.ndarray) -> set:
+    return set(map(tuple, array.tolist()))
+
+
+def test_clusters_are_8_connected_groups():
+    found = clusters(np.array([(0, 0), (1, 1), (5, 5), (5, 6), (9, 0)]))
+    assert sorted(cells_of(group).__len__() for group in found) == [1, 2, 2]
+    assert {frozenset(cells_of(g)) for g in found} == {frozenset({(0, 0), (1, 1)}), frozenset({(5, 5), (5, 6)}),
+                                                       frozenset({(9, 0)})}
+
+
+def test_a_box_moving_one_cell_a_tick_is_predicted_along_its_way():
+    """A 3-cell edge at column 10 at tick 1, column 11 at tick 2: velocity (0, 1); over the next two ticks it
+    enters columns 12 and 13, rows 4-6 (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(1, column(10))
+    assert len(predictor.entering(1, 2)) == 0  # one edge: direction unknown
+    predictor.observe(2, column(11))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 1.0])
+    assert cells_of(predictor.entering(2, 2)) == cells_of(np.vstack([column(12), column(13)]))
+    assert cells_of(predictor.entering(2, 1)) == cells_of(column(12))
+
+
+def test_a_slow_box_is_tracked_across_the_ticks_it_does_not_move_and_dropped_once_it_stops():
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(2, column(10))
+    predictor.observe(3, np.zeros((0, 2)))
+    predictor.observe(4, column(9))  # half a cell per tick, to the left
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, -0.5])
+    predictor.observe(5, np.zeros((0, 2)))
+    assert cells_of(column(8)) <= cells_of(predictor.entering(5, 1))
+    for tick in range(6, 9):
+        predictor.observe(tick, np.zeros((0, 2)))
+    assert predictor.tracks == [] and len(predictor.entering(8, 4)) == 0  # no edge for 4 ticks: it stopped
+
+
+def test_a_box_seen_every_other_tick_is_expected_every_other_tick():
+    """Edges at columns 10, 11, 12 at ticks 2, 4, 6 (half a cell per tick): the next move is due at tick 8, so
+    right after tick 6 nothing is entered at tick 7, column 13 at tick 8 (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((2, 10), (4, 11), (6, 12)):
+        predictor.observe(tick, column(col))
+        predictor.observe(tick + 1, np.zeros((0, 2)))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.5])
+    assert predictor.arrivals(6, 2) == {cell: 2 for cell in cells_of(column(13))}
+    assert predictor.arrivals(7, 1) == {cell: 1 for cell in cells_of(column(13))}
+
+
+def test_the_velocity_is_the_mean_over_the_last_edges():
+    """Edges 3, 3 and 4 ticks apart (0.3 cells per tick): the velocity is 3 cells over 10 ticks, not the last
+    interval's 1/4."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((1, 10), (4, 11), (7, 12), (11, 13)):
+        predictor.observe(tick, column(col))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.3])
+
+
+def test_a_door_that_closes_once_is_never_predicted():
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(1, np.array([(r, c) for r in range(5, 7) for c in range(3, 9)]))
+    for tick in range(2, 6):
+        predictor.observe(tick, np.zeros((0, 2)))
+        assert len(predictor.entering(tick, 5)) == 0
+
+
+def test_two_boxes_passing_each_other_keep_their_own_velocities():
+    predictor = MotionPredictor((30, 30))
+    predictor.observe(1, np.vstack([column(5, range(2, 4)), column(20, range(10, 12))]))
+    predictor.observe(2, np.vstack([column(6, range(2, 4)), column(19, range(10, 12))]))
+    velocities = sorted(tuple(t.velocity) for t in predictor.tracks)
+    assert velocities == [(0.0, -1.0), (0.0, 1.0)]
+    assert cells_of(predictor.entering(2, 1)) == cells_of(np.vstack([column(7, range(2, 4)),
+                                                                     column(18, range(10, 12))]))
+
+
+def test_predictions_stay_inside_the_map():
+    predictor = MotionPredictor((10, 10))
+    predictor.observe(1, column(8, range(0, 2)))
+    predictor.observe(2, column(9, range(0, 2)))
+    assert len(predictor.entering(2, 5)) == 0
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, True, "4"])
+def test_predict_ticks_must_be_a_non_negative_integer(bad):
+    with pytest.raises(ValueError, match="predict_ticks"):
+        tdp.NavigatorConfig(predict_ticks=bad)
+
+
+@pytest.mark.parametrize("bad", [1, "yes", None])
+def test_avoid_boxes_must_be_a_bool(bad):
+    with pytest.raises(ValueError, match="avoid_boxes"):
+        tdp.NavigatorConfig(avoid_boxes=bad)
+
+
+def test_the_goal_layer_never_sees_a_prediction():
+    """Two navigators fed the same moving boxes, one predicting: their goal layers are equal at every tick."""
+    scenario = make_world("crossing", 100, 1)
+    grid = tdp.GridMap(scenario.occupancy(0))
+    plain, predicting = (tdp.Navigator(grid, scenario.start, scenario.goal, tdp.NavigatorConfig(predict_ticks=h))
+                         for h in (0, 6))
+    feeds = [WorldFeed(scenario.occupancy(0), scenario.goal) for _ in range(2)]
+    for navigator in (plain, predicting):
+        navigator.setup()
+    for tick in range(1, 40):
+        for navigator, feed in zip((plain, predicting), feeds):
+            feed.update(navigator, scenario.occupancy(tick), scenario.goal)
+            navigator.tick()
+        np.testing.assert_array_equal(plain.engine.goal_distances(), predicting.engine.goal_distances())
+    assert len(predicting.predictor.tracks) > 0
+
+
+def test_avoiding_boxes_keeps_the_robot_out_of_their_way():
+    """cluttered-100-0 at K = 4: a sliding box drives onto the robot and sits on it for 26 ticks; with avoid_boxes
+    the robot yields or steps aside and is never hit, and reaches the goal."""
+    scenario = make_world("cluttered", 100, 0)
+    hits = {}
+    for avoid in (False, True):
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=avoid), 400)
+        assert record["reached"] and record["collisions"] == 0
+        hits[avoid] = record["hits"]
+    assert hits[False] > 0 and hits[True] == 0
+
+
+def test_prediction_turns_the_robot_earlier_when_a_box_moves_into_its_passage():
+    scenario = tdp.scenarios.get("moving-blockage")
+    route = unblocked_route(scenario)
+    turns = {}
+    for horizon in (0, 4):
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(updates_per_move=1, predict_ticks=horizon))
+        assert record["reached"]
+        turns[horizon] = turn_and_closest(scenario, record["trajectory"], route)["turn_after"]
+    assert turns[4] <= turns[0] - 3
