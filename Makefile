@@ -26,6 +26,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.worlds
 	$(PY) -m benchmarks.budget
 	$(PY) -m benchmarks.sweep
+	$(PY) -m benchmarks.predict
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick
