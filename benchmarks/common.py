@@ -94,6 +94,40 @@ def run_spec(name: str, args, serial: bool) -> tuple:
     return spec, rows, tidy(spec, rows)
 
 
+#: Table columns (header, cell) of every world-benchmark summary row: how the runs ended.
+OUTCOME_COLUMNS = [("worlds", lambda s: str(s["worlds"])), ("reached %", lambda s: f"{s['reached_pct']:.0f}"),
+                   ("coll.", lambda s: str(s["collisions"])), ("hits", lambda s: str(s["hits"])),
+                   ("mean ratio", lambda s: f"{s['mean_ratio']:.3f}"), ("max ratio", lambda s: f"{s['max_ratio']:.3f}")]
+#: Blockage detections and the share the exact pair distances justify.
+DETECTION_COLUMNS = [("detections", lambda s: str(s.get("detections", "-"))),
+                     ("justified", lambda s: f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-")]
+
+
+def sweep_benchmark(doc: str, name: str, summarise: Callable[[list[dict]], list[dict]],
+                    columns: list[tuple[str, Callable[[dict], str]]], figure: Callable, extra: dict | None = None):
+    """The main of a benchmark that is a sweep spec: run ``specs/<name>.yaml`` (on a local cluster unless
+    --workers says otherwise), print ``summarise(table)`` as a table of ``columns`` (header, cell of a summary row),
+    and save the spec's name, ``extra``, the summary and the tidy table as JSON with ``figure(summary, png)``."""
+    args = sweep_parser(doc, "one per core").parse_args()
+    spec, _, table = run_spec(name, args, serial=False)
+    summary = summarise(table)
+    print_table([header for header, _ in columns], [[cell(s) for _, cell in columns] for s in summary])
+    save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", **(extra or {}), "summary": summary,
+                             "rows": table}, lambda png: figure(summary, png))
+
+
+def grouped_bars(ax, groups: list[str], series: dict[str, list[float]]) -> None:
+    """One bar per series side by side over each group, the groups named below and the series in a legend."""
+    import numpy as np
+
+    width = 0.8 / len(series)
+    for j, (label, values) in enumerate(series.items()):
+        ax.bar(np.arange(len(groups)) + j * width, values, width, label=label)
+    ax.set_xticks(np.arange(len(groups)) + 0.4 - width / 2)
+    ax.set_xticklabels(groups, rotation=20, fontsize=8)
+    ax.legend(fontsize=7)
+
+
 def print_table(headers: list[str], rows: list[list[str]]) -> None:
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(headers)]
     print("| " + " | ".join(h.ljust(w) for h, w in zip(headers, widths)) + " |")

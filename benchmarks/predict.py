@@ -18,7 +18,8 @@ import math
 import numpy as np
 
 import tdp
-from benchmarks.common import print_table, run_spec, save_results, sweep_parser, turn_and_closest, unblocked_route
+from benchmarks.common import (DETECTION_COLUMNS, OUTCOME_COLUMNS, grouped_bars, sweep_benchmark, turn_and_closest,
+                               unblocked_route)
 from benchmarks.worlds import truth_metrics
 
 _ROUTES: dict[str, list] = {}
@@ -74,37 +75,25 @@ def figure(summary: list[dict], path) -> None:
     ks = list(dict.fromkeys(s["k"] for s in summary))
     labels = list(SETTINGS.values())
     fig, axes = plt.subplots(2, len(ks), figsize=(6 * len(ks), 7), squeeze=False)
-    width = 0.8 / len(labels)
     for column, k in enumerate(ks):
         for row, (field, title) in enumerate((("hits", "hits (ticks a box sat on the robot)"),
                                               ("mean_ratio", "mean path length / oracle"))):
             ax = axes[row][column]
-            for j, label in enumerate(labels):
-                values = [next((s[field] for s in summary if s["group"] == g and s["k"] == k
-                                and s["setting"] == label), math.nan) for g in groups]
-                ax.bar(np.arange(len(groups)) + j * width, values, width, label=label)
-            ax.set_xticks(np.arange(len(groups)) + 0.4 - width / 2)
-            ax.set_xticklabels(groups, rotation=20, fontsize=8)
+            grouped_bars(ax, groups, {label: [next((s[field] for s in summary if s["group"] == g and s["k"] == k
+                                                    and s["setting"] == label), math.nan) for g in groups]
+                                      for label in labels})
             ax.set_title(f"K = {k}: {title}", fontsize=9)
             if field == "mean_ratio":
                 ax.set_ylim(0.9, None)
-            ax.legend(fontsize=7)
     save_figure(fig, path)
 
 
 def main() -> None:
-    args = sweep_parser(__doc__, "one per core").parse_args()
-    spec, _, table = run_spec("predict", args, serial=False)
-    summary = summarise(table)
-    print_table(["group", "K", "setting", "worlds", "reached %", "coll.", "hits", "mean ratio", "max ratio",
-                 "detections", "justified", "yields", "turn after", "ms/tick"],
-                [[s["group"], str(s["k"]), s["setting"], str(s["worlds"]), f"{s['reached_pct']:.0f}",
-                  str(s["collisions"]), str(s["hits"]), f"{s['mean_ratio']:.3f}", f"{s['max_ratio']:.3f}",
-                  str(s["detections"]), f"{s['justified'] / s['detections']:.0%}" if s["detections"] else "-",
-                  str(s["yields"]), "-" if s["turn_after"] is None else f"{s['turn_after']:.0f}",
-                  f"{s['ms_median']:.2f}"] for s in summary])
-    save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", "summary": summary, "rows": table},
-                 lambda png: figure(summary, png))
+    sweep_benchmark(__doc__, "predict", summarise, [
+        ("group", lambda s: s["group"]), ("K", lambda s: str(s["k"])), ("setting", lambda s: s["setting"]),
+        *OUTCOME_COLUMNS, *DETECTION_COLUMNS, ("yields", lambda s: str(s["yields"])),
+        ("turn after", lambda s: "-" if s["turn_after"] is None else f"{s['turn_after']:.0f}"),
+        ("ms/tick", lambda s: f"{s['ms_median']:.2f}")], figure)
 
 
 if __name__ == "__main__":

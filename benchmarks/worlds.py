@@ -24,7 +24,7 @@ import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import print_table, run_spec, save_results, sweep_parser
+from benchmarks.common import DETECTION_COLUMNS, OUTCOME_COLUMNS, grouped_bars, sweep_benchmark
 from benchmarks.reference_graph import grid_graph
 from tdp.random_worlds import CUTTING
 
@@ -143,33 +143,21 @@ def figure(summary: list[dict], path) -> None:
     fig, axes = plt.subplots(1, len(ks), figsize=(6 * len(ks), 4), squeeze=False)
     for ax, k in zip(axes[0], ks):
         planners = list(dict.fromkeys(s["planner"] for s in summary))
-        width = 0.8 / len(planners)
-        for j, planner in enumerate(planners):
-            values = [next(s["mean_ratio"] for s in summary if s["family"] == f and s["k"] == k
-                           and s["planner"] == planner) for f in families]
-            ax.bar(np.arange(len(families)) + j * width, values, width, label=planner)
-        ax.set_xticks(np.arange(len(families)) + 0.4 - width / 2)
-        ax.set_xticklabels(families, rotation=20, fontsize=8)
+        grouped_bars(ax, families, {planner: [next(s["mean_ratio"] for s in summary if s["family"] == f
+                                                   and s["k"] == k and s["planner"] == planner) for f in families]
+                                    for planner in planners})
         ax.set_ylim(0.95, None)
         ax.set_ylabel("mean path length / oracle")
         ax.set_title(f"K = {k}")
-        ax.legend(fontsize=7)
     save_figure(fig, path)
 
 
 def main() -> None:
-    args = sweep_parser(__doc__, "one per core").parse_args()
-    spec, _, table = run_spec("worlds", args, serial=False)
-    summary = summarise(table)
-    print_table(["family", "K", "planner", "worlds", "reached %", "coll.", "hits", "mean ratio", "max ratio",
-                 "worse than DP", "detections", "justified", "waits (with a move)", "ms/tick"],
-                [[s["family"], str(s["k"]), s["planner"], str(s["worlds"]), f"{s['reached_pct']:.0f}",
-                  str(s["collisions"]), str(s["hits"]), f"{s['mean_ratio']:.3f}", f"{s['max_ratio']:.3f}",
-                  str(s.get("worse_than_dp", "-")), str(s.get("detections", "-")),
-                  f"{s['justified'] / s['detections']:.0%}" if s.get("detections") else "-",
-                  f"{s['waits']} ({s['stuck_waits']})", f"{s['ms_median']:.2f}"] for s in summary])
-    save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", "cutting_families": list(CUTTING),
-                             "summary": summary, "rows": table}, lambda png: figure(summary, png))
+    sweep_benchmark(__doc__, "worlds", summarise, [
+        ("family", lambda s: s["family"]), ("K", lambda s: str(s["k"])), ("planner", lambda s: s["planner"]),
+        *OUTCOME_COLUMNS, ("worse than DP", lambda s: str(s.get("worse_than_dp", "-"))), *DETECTION_COLUMNS,
+        ("waits (with a move)", lambda s: f"{s['waits']} ({s['stuck_waits']})"),
+        ("ms/tick", lambda s: f"{s['ms_median']:.2f}")], figure, {"cutting_families": list(CUTTING)})
 
 
 if __name__ == "__main__":
