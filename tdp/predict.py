@@ -95,15 +95,22 @@ class MotionPredictor:
         it, and only those ticks are flagged (a box seen every other tick is not expected every tick); a faster one
         sweeps as in :meth:`entering`."""
         found: dict[tuple[int, int], int] = {}
-        for track in self.tracks:
-            if track.velocity is None or not track.alive_at(tick, self.min_speed):
-                continue
+        for track in self._moving(tick):
             for step in range(1, ahead + 1):
-                for cells in self._moved_into(track, tick - track.tick + step):
-                    for cell in map(tuple, cells.tolist()):
-                        if 0 <= cell[0] < self.shape[0] and 0 <= cell[1] < self.shape[1]:
-                            found.setdefault(cell, step)
+                moved = self._moved_into(track, tick - track.tick + step)
+                for cell in map(tuple, self._inside(np.vstack(moved)).tolist() if moved else []):
+                    found.setdefault(cell, step)
         return found
+
+    def _moving(self, tick: int) -> list[Track]:
+        """The tracks with a velocity that are still taken to be moving at ``tick``."""
+        return [track for track in self.tracks
+                if track.velocity is not None and track.alive_at(tick, self.min_speed)]
+
+    def _inside(self, cells: np.ndarray) -> np.ndarray:
+        """The rows of ``cells`` inside the map."""
+        inside = (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
+        return cells[inside]
 
     @staticmethod
     def _moved_into(track: Track, elapsed: int) -> list[np.ndarray]:
@@ -123,17 +130,12 @@ class MotionPredictor:
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
         after ``tick`` up to ``tick + horizon``, at constant velocity; the edges' current cells left out."""
-        found = []
-        for track in self.tracks if horizon >= 1 else []:
-            if track.velocity is None or not track.alive_at(tick, self.min_speed):
-                continue
-            found += [track.edge + offset for offset in _swept_offsets(track.velocity * (tick - track.tick),
-                                                                        track.velocity * (tick + horizon - track.tick))]
+        found = [track.edge + offset for track in (self._moving(tick) if horizon >= 1 else [])
+                 for offset in _swept_offsets(track.velocity * (tick - track.tick),
+                                              track.velocity * (tick + horizon - track.tick))]
         if not found:
             return np.zeros((0, 2), np.int64)
-        cells = np.unique(np.vstack(found), axis=0)
-        inside = (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
-        return cells[inside]
+        return self._inside(np.unique(np.vstack(found), axis=0))
 
 
 def _swept_offsets(now: np.ndarray, then: np.ndarray) -> list[np.ndarray]:
