@@ -7,9 +7,10 @@ A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on
 random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named scenarios moving-blockage and
 sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
 and box avoidance off or on. Per group, K and setting: worlds, reached %, collisions, hits (ticks a box sat on the
-robot), mean and max ratio to the oracle (over the worlds the oracle reached), detections and the fraction the exact pair distances justify (as in
-``benchmarks.worlds``; a detection made ahead of a predicted closure counts as justified only if the closure
-comes within the look-back window), yields, and for the named scenarios the ticks from the change to the turn.
+robot), mean and max ratio to the oracle (over the worlds the oracle reached), detections and the fraction the exact
+pair distances justify (as in ``benchmarks.worlds``; a detection made ahead of a predicted closure counts as
+justified only if the closure comes within the look-back window), yields, and for the named scenarios the ticks from
+the change to the turn.
 """
 from __future__ import annotations
 

@@ -13,15 +13,16 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   ``D[Z] + |V - Z| + pen[crossed cells]``.
 
 Kernels come from a factory (``_kernels_for``), one set per compile-time spec - lanes (0 for the goal layer, LANES
-for node windows), neighbourhood, corner rule - closed over as constants; each kind of layer (``_Layers``) knows
-its kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the kernels'
-parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous
-iteration). Which kernel runs when (``_Layers._waves`` alone decides serial or parallel):
+for node windows), neighbourhood, corner rule - closed over as constants; each kind of layer (``_Layers``) knows its
+kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the kernels'
+parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer. Each kind
+of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous iteration). Which
+kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 
 | work | kernel | launch |
 |---|---|---|
-| k iterations, the graph cells sampled after each | ``iterate_serially`` | one launch on the calling thread, while at most SERIAL_TILES tiles are active (CPU) |
-| one busy iteration | ``iterate`` | parallel over tiles, one launch per iteration (always on a GPU) |
+| k iterations, sampled after each | ``iterate_serially`` | one launch on the calling thread, while <= SERIAL_TILES active |
+| one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of in-place settling | ``settle_serially`` / ``settle`` | the same rule |
 | initial state, penalties | ``reset``, ``gather_penalties`` | construction, ``reset`` |
 | map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |

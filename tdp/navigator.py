@@ -285,8 +285,7 @@ class Navigator:
         options = [(cell, cost) for cell, cost in self._legal_moves() if arrivals.get(cell, math.inf) > 1]
         if not options:
             return wanted
-        layer = 1 + self._subgoal if self.state == "backup" and self._subgoal < len(self.nodes) else 0
-        values = self.engine.sample([cell for cell, _ in options])[:, layer]
+        values = self.engine.sample([cell for cell, _ in options])[:, self._followed_layer()]
         best = max(range(len(options)), key=lambda i: (options[i][0] not in arrivals, -(values[i] + options[i][1])))
         return options[best][0]
 
@@ -481,10 +480,11 @@ class Navigator:
         of the subgoal's layer (for a controller's look-ahead). Empty at the goal or where the layer gives no move."""
         if self.robot == self.goal:
             return []
-        layer = 0
-        if self.state == "backup" and self._subgoal < len(self.nodes):
-            layer = 1 + self._subgoal
-        return self.engine.trace(layer, self.robot, steps)
+        return self.engine.trace(self._followed_layer(), self.robot, steps)
+
+    def _followed_layer(self) -> int:
+        """The layer the robot follows: 1 + the subgoal's node in backup mode, else 0 (the goal layer)."""
+        return 1 + self._subgoal if self.state == "backup" and self._subgoal < len(self.nodes) else 0
 
     def _next_cell(self) -> tuple[int, int] | None:
         step = self.route(1)

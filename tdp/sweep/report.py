@@ -28,7 +28,8 @@ def tidy(spec: Spec, rows: list[dict]) -> list[dict]:
         ratio = math.nan
         if best and row["reached"] and best["reached"] and best["length"] > 0:
             ratio = row["length"] / best["length"]
-        extra = {k: v for k, v in row.items() if k not in known and (v is None or isinstance(v, (bool, int, float, str)))}
+        extra = {k: v for k, v in row.items()
+                 if k not in known and (v is None or isinstance(v, (bool, int, float, str)))}
         out.append({**{c: row[c] for c in WORLD_COLUMNS}, **{c: row["config"].get(c) for c in spec.columns},
                     **{m: row.get(m) for m in METRICS}, "ratio": ratio, **extra, "key": row["key"]})
     return out
