@@ -21,7 +21,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 
 | work | kernel | launch |
 |---|---|---|
-| k iterations, sampled after each | ``iterate_serially`` | one launch on the calling thread, while <= SERIAL_TILES active |
+| k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of in-place settling | ``settle_serially`` / ``settle`` | the same rule |
 | initial state, penalties | ``reset``, ``gather_penalties`` | construction, ``reset`` |
@@ -331,8 +331,9 @@ def _tile_rules(cell: dict) -> dict:
 
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
-    stencil's ``neighbourhood`` and corner rule - closed over as constants; :attr:`all` lists every one, for
-    :meth:`_Layers.warm_up`. Build them with :func:`_kernels_for`, which caches one set per spec.
+    stencil's ``neighbourhood`` and corner rule - closed over as constants. The decorator that makes each kernel also
+    records it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
+    :func:`_kernels_for`, which caches one set per spec.
 
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
     ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells; ``out`` samples
@@ -352,8 +353,14 @@ class _Kernels:
         Cells = Origins = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
         Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
         Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
+        made = []
 
-        @ti.kernel
+        def kernel(function):
+            """``ti.kernel``, and the kernel recorded in :attr:`all` (and so warmed up) and named on this object."""
+            made.append(ti.kernel(function))
+            return made[-1]
+
+        @kernel
         def iterate(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, origins: Origins,
                     cells: Cells, out: Samples, cap: ti.f32, run: ti.types.vector(2, ti.i32)):
             """One iteration src -> dst of the active tiles (run = (tick, step)), shared out among the threads; then
@@ -361,7 +368,7 @@ class _Kernels:
             relax_all(src, dst, pen, stamps, header, cap, run[0], False)
             sample_into(dst, origins, cells, out, cap, run[1])
 
-        @ti.kernel
+        @kernel
         def iterate_serially(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, origins: Origins,
                              cells: Cells, out: Samples, cap: ti.f32, run: ti.types.vector(5, ti.i32)) -> ti.i32:
             """Up to ``steps`` iterations on the calling thread (run = (tick, first, steps, limit, woken)), each
@@ -389,13 +396,13 @@ class _Kernels:
                 done += 1
             return done
 
-        @ti.kernel
+        @kernel
         def settle(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32, tick: ti.i32) -> ti.i32:
             """One round of in-place settling, the tiles shared out among the threads; returns the number of tiles
             that changed."""
             return settle_all(values, pen, stamps, header, cap, tick, False)
 
-        @ti.kernel
+        @kernel
         def settle_serially(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32,
                             run: ti.types.vector(3, ti.i32), result: Ints):
             """Up to ``rounds`` rounds of settling on the calling thread (run = (tick, rounds, limit)), until one
@@ -411,7 +418,7 @@ class _Kernels:
             result[0] = done
             result[1] = touched
 
-        @ti.kernel
+        @kernel
         def reset(src: Values, dst: Values, pen: Values, header: Ints, cap: ti.f32):
             """The initial state of eqs. 5 and 10 in both buffers: 0 at a free source, the cap everywhere else."""
             for g, i, j in src:
@@ -421,7 +428,7 @@ class _Kernels:
                 src[g, i, j] = value
                 dst[g, i, j] = value
 
-        @ti.kernel
+        @kernel
         def gather_penalties(pen: Values, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
             """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
             blocked and in the padding): inf outside the grid and in the layer's own padding."""
@@ -436,7 +443,7 @@ class _Kernels:
                         value = grid[r + PAD, c + PAD]
                     store(pen, g, i, j, lane, value)
 
-        @ti.kernel
+        @kernel
         def paint(src: Values, dst: Values, pen: Values, origins: Origins, cells: Cells,
                   penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32):
             """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them; a newly
@@ -451,7 +458,7 @@ class _Kernels:
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
 
-        @ti.kernel
+        @kernel
         def stamp_cells(stamps: Stamps, pen: Values, origins: Origins, cells: Cells, tick: ti.i32):
             """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
             (a layer, of ``pen``'s shape, sees a cell up to PAD outside it)."""
@@ -466,12 +473,12 @@ class _Kernels:
                                 if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
                                     stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
 
-        @ti.kernel
+        @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
             """Every layer of this kind at ``cells`` into out[0] (see ``sample_into``)."""
             sample_into(values, origins, cells, out, cap, 0)
 
-        @ti.kernel
+        @kernel
         def trace(values: Values, pen: Values, header: Ints, cap: ti.f32, index: ti.i32,
                   start: ti.types.vector(2, ti.i32), out: Cells):
             """Follow the successors of layer ``index`` of this kind from ``start`` (padded layer coordinates) for at
@@ -495,12 +502,9 @@ class _Kernels:
                     break
             out[0, 0] = steps
 
-        self.iterate, self.iterate_serially, self.settle, self.settle_serially = (iterate, iterate_serially, settle,
-                                                                                  settle_serially)
-        self.reset, self.paint, self.stamp_cells, self.sample, self.trace = reset, paint, stamp_cells, sample, trace
-        self.gather_penalties = gather_penalties
-        self.all = (iterate, iterate_serially, settle, settle_serially, reset, gather_penalties, paint, stamp_cells,
-                    sample, trace)
+        self.all = tuple(made)
+        for made_kernel in made:
+            setattr(self, made_kernel.__name__, made_kernel)
         self.warmed = False
 
 
