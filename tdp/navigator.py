@@ -352,13 +352,16 @@ class Navigator:
 
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
         """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
-        whose segments cross them."""
+        whose segments cross them, and with the direct R-G edge only where the goal layer's successors really reach
+        G (while news of a cut travels, its value at R can be under DmaxQ and stale)."""
         if self._readings is None or self._readings[0] != self._reading_state():
             self._readings = (self._reading_state(), self.engine.sample(self._graph_cells()))
-        unreliable = None
-        if without_blocked and self.monitor.blocked is not None:
-            unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
-        return NodeGraph(self._readings[1], self.dmax_q, self._active_nodes(), unreliable)
+        unreliable, direct = None, True
+        if without_blocked:
+            if self.monitor.blocked is not None:
+                unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
+            direct = self._real_goal_route(math.ceil(self.dmax_q) + 1) is not None
+        return NodeGraph(self._readings[1], self.dmax_q, self._active_nodes(), unreliable, direct)
 
     def _reading_state(self) -> tuple:
         """What the layers read at the graph cells depend on: the iteration, R, G and the edits so far."""
@@ -432,9 +435,8 @@ class Navigator:
         along its first s cells each value equals its successor's plus the move (within SETTLED_CELLS), i.e. no
         change is still arriving where the robot is about to drive (further on it has time to settle)."""
         budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
-        limit = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
-        chain = [self.robot] + self.engine.trace(0, self.robot, limit)
-        if chain[-1] != self.goal or self._predicted[tuple(np.array(chain).T)].any():
+        chain = self._real_goal_route(4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1)
+        if chain is None:
             return False
         steps = np.hypot(*np.diff(np.array(chain), axis=0).T)
         if steps.sum() > budget:
@@ -442,6 +444,14 @@ class Navigator:
         near = int(np.searchsorted(np.cumsum(steps), self.spacing)) + 1
         values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
         return bool((values[1:] + steps[:near] - values[:-1] <= SETTLED_CELLS).all())
+
+    def _real_goal_route(self, max_steps: int) -> list[tuple[int, int]] | None:
+        """The goal layer's successors from R when they reach G within ``max_steps`` moves through no predicted
+        cell - a real route on the map as it is, not about to close - else None."""
+        chain = [self.robot] + self.engine.trace(0, self.robot, max_steps)
+        if chain[-1] != self.goal or self._predicted[tuple(np.array(chain).T)].any():
+            return None
+        return chain
 
     def _backup_cost_from_robot(self) -> float:
         """The backup's estimated cost from R: the subgoal's layer at R plus the rest of the last path (inf when the

@@ -90,14 +90,16 @@ class NodeGraph:
     ``samples`` is the engine's :meth:`~tdp.engine.Engine.sample` at the node cells then R then G: row k, column 0
     the goal layer at cell k, column 1 + j node j's layer at cell k. Vertex ids: nodes 0..n-1, R = n, G = n + 1.
     Pair weight D(Qa, Qb) = max(layer_b[Qa], layer_a[Qb]) (conservative while news travels); robot and goal edges
-    are layer_j[R] and layer_j[G]; R-G is direct when layer_0[R] < DmaxQ. An edge exists where its weight < DmaxQ.
+    are layer_j[R] and layer_j[G]; R-G is direct when layer_0[R] < DmaxQ and ``direct_goal`` (the caller vouches
+    that the goal layer's value at R is a real route, not stale). An edge exists where its weight < DmaxQ.
     Inactive nodes (covered by an obstacle) have no edges; ``blocked`` pairs (the monitor's verdict: their distance
     is still rising after a cut, so their weight is stale) have none either, and neither has the edge from R (or G)
     to a node j blocked from a node i that R (or G) reaches first: R's reading of j then most likely went through
     the cut, and the news has not reached R yet.
     """
 
-    def __init__(self, samples: np.ndarray, dmax_q: float, active: np.ndarray, blocked: np.ndarray | None = None):
+    def __init__(self, samples: np.ndarray, dmax_q: float, active: np.ndarray, blocked: np.ndarray | None = None,
+                 direct_goal: bool = True):
         n = samples.shape[0] - 2
         self.n = n
         self.dmax_q = float(dmax_q)
@@ -107,7 +109,7 @@ class NodeGraph:
         self.robot_readings = samples[n, 1:].astype(np.float64)  # layer_j[R] before any edge is dropped
         self.robot = self.robot_readings.copy()
         self.goal = samples[n + 1, 1:].astype(np.float64)
-        self.robot_goal = float(samples[n, 0])
+        self.robot_goal = float(samples[n, 0]) if direct_goal else np.inf
         if blocked is not None:
             self.pairs[blocked] = np.inf
             self.robot[self._cut_off(self.robot, blocked)] = np.inf
