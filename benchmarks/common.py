@@ -169,6 +169,17 @@ def blockage_metrics(scenario, record: dict, oracle_length: float, route: list[t
             **{f"ms_{name}": value for name, value in per_tick.items()}}
 
 
+_UNBLOCKED_ROUTES: dict[str, list] = {}
+
+
+def turn_against_unblocked(scenario, trajectory: list) -> dict:
+    """:func:`turn_and_closest` against the scenario's :func:`unblocked_route`, found once per scenario name and
+    process (sweep metrics run once per episode)."""
+    if scenario.name not in _UNBLOCKED_ROUTES:
+        _UNBLOCKED_ROUTES[scenario.name] = unblocked_route(scenario)
+    return turn_and_closest(scenario, trajectory, _UNBLOCKED_ROUTES[scenario.name])
+
+
 def turn_and_closest(scenario, trajectory: list, route: list[tuple[int, int]]) -> dict:
     """Ticks from the change to the turn (the first tick at which the robot leaves ``route``, the way it would
     have gone without the blockage) and the closest approach to the blocking box (cells) after the change."""

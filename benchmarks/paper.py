@@ -13,8 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 import tdp
-from benchmarks.common import (RESULTS, machine, print_table, run_spec, sweep_parser, turn_and_closest,
-                               unblocked_route, write_json)
+from benchmarks.common import (RESULTS, machine, print_table, run_spec, sweep_parser, turn_against_unblocked,
+                               write_json)
 
 #: The paper's three sweeps: the field swept, its label, and the values the other two hold meanwhile.
 SWEEPS = {
@@ -22,15 +22,12 @@ SWEEPS = {
     "updates": ("updates_per_move", "DP updates per move (K)", {"nodes": 25, "vision": 2.5}),
     "vision": ("vision", "vision DmaxQ / spacing", {"nodes": 25, "updates_per_move": 1}),
 }
-_ROUTES: dict[str, list] = {}
 
 
 def turn_metrics(scenario: tdp.Scenario, record: dict, planner, config: tdp.NavigatorConfig) -> dict:
     """Sweep metric (the spec's ``metrics``): ticks from the change to the turn, the closest approach to the
     blocking box, and the trajectory for the path figures."""
-    if scenario.name not in _ROUTES:
-        _ROUTES[scenario.name] = unblocked_route(scenario)
-    return {**turn_and_closest(scenario, record["trajectory"], _ROUTES[scenario.name]),
+    return {**turn_against_unblocked(scenario, record["trajectory"]),
             "trajectory": [list(cell) for cell in record["trajectory"]]}
 
 

@@ -19,11 +19,9 @@ import math
 import numpy as np
 
 import tdp
-from benchmarks.common import (DETECTION_COLUMNS, OUTCOME_COLUMNS, grouped_bars, sweep_benchmark, turn_and_closest,
-                               unblocked_route)
+from benchmarks.common import DETECTION_COLUMNS, OUTCOME_COLUMNS, grouped_bars, sweep_benchmark, turn_against_unblocked
 from benchmarks.worlds import truth_metrics
 
-_ROUTES: dict[str, list] = {}
 #: The settings compared, as the tables name them: (predict_ticks, avoid_boxes).
 SETTINGS = {(0, False): "off", (4, False): "predict 4", (0, True): "avoid", (4, True): "predict 4 + avoid"}
 
@@ -33,9 +31,7 @@ def prediction_metrics(scenario: tdp.Scenario, record: dict, planner, config: td
     from the change to the turn and the closest approach (:func:`benchmarks.common.turn_and_closest`)."""
     row = truth_metrics(scenario, record, planner, config)
     if scenario.blocking is not None and scenario.change_tick is not None:
-        if scenario.name not in _ROUTES:
-            _ROUTES[scenario.name] = unblocked_route(scenario)
-        row.update(turn_and_closest(scenario, record["trajectory"], _ROUTES[scenario.name]))
+        row.update(turn_against_unblocked(scenario, record["trajectory"]))
     return row
 
 

@@ -58,12 +58,8 @@ class DStarLite:
 
     def _edges(self, cell):
         """(neighbour, cost) over the allowed moves from ``cell`` (the graph is symmetric)."""
-        r, c = cell
-        if not self._free(r, c):
-            return
-        for m in self.moves:
-            if self._free(r + m.dr, c + m.dc) and all(self._free(r + dr, c + dc) for dr, dc in m.crossed):
-                yield (r + m.dr, c + m.dc), m.cost
+        if self._free(*cell):
+            yield from stencil.legal_moves(self.occupied, cell, self.moves)
 
     # -- D* Lite -------------------------------------------------------------------------------------------------
     def _h(self, a, b) -> float:

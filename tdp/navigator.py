@@ -21,7 +21,7 @@ from .grid import GridMap
 from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, place_nodes
 from .predict import MotionPredictor
 from .search import uniform_cost_search
-from .stencil import check_neighbourhood, moves
+from .stencil import check_neighbourhood, legal_moves, moves
 
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
@@ -291,13 +291,8 @@ class Navigator:
 
     def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
         """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""
-        (r, c), occupied = self.robot, self.engine.occupied
-        found = []
-        for m in moves(self.config.neighbourhood, self.config.corner_cutting):
-            cells = [(r + m.dr, c + m.dc)] + [(r + dr, c + dc) for dr, dc in m.crossed]
-            if all(0 <= i < occupied.shape[0] and 0 <= j < occupied.shape[1] and not occupied[i, j] for i, j in cells):
-                found.append(((r + m.dr, c + m.dc), m.cost))
-        return found
+        allowed = moves(self.config.neighbourhood, self.config.corner_cutting)
+        return list(legal_moves(self.engine.occupied, self.robot, allowed))
 
     def _run_iterations(self) -> tuple[list[tuple[int, tuple[int, int]]], float, float]:
         """The tick's DP iterations - K, or with ``budget_ms`` as many as fit in the budget (at least one) - with

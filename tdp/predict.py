@@ -40,7 +40,8 @@ class Track:
 
     @property
     def centre(self) -> np.ndarray:
-        return self.edge.mean(axis=0)
+        """The last edge's centre."""
+        return self.seen[-1][1]
 
     def alive_at(self, tick: int, min_speed: float) -> bool:
         """Whether the obstacle is still taken to be moving at ``tick``: its next edge is due within the ticks a

@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+import numpy as np
+
 NEIGHBOURHOODS = (4, 8, 16)
 
 _STRAIGHT = ((-1, 0), (0, 1), (1, 0), (0, -1))
@@ -62,3 +64,14 @@ def moves(neighbourhood: int = 16, corner_cutting: bool = False) -> tuple[Move, 
         Move(dr, dc, math.hypot(dr, dc), () if corner_cutting else _crossed_cells(dr, dc))
         for dr, dc in offsets[check_neighbourhood(neighbourhood)]
     )
+
+
+def legal_moves(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...]):
+    """(neighbour, length) of each of the ``allowed`` moves from ``cell`` into a free cell of the bool map
+    ``occupied`` (True = obstacle), crossing only free cells; cells outside the map count as occupied."""
+    rows, cols = occupied.shape
+    r, c = cell
+    for m in allowed:
+        if all(0 <= i < rows and 0 <= j < cols and not occupied[i, j]
+               for i, j in [(r + m.dr, c + m.dc)] + [(r + dr, c + dc) for dr, dc in m.crossed]):
+            yield (r + m.dr, c + m.dc), m.cost
