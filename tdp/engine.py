@@ -23,7 +23,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 |---|---|---|
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds of in-place settling | ``settle_serially`` / ``settle`` | the same rule |
+| converge: rounds of the raise wave, then of settling in place | ``settle_serially`` / ``settle`` | the same rule |
 | initial state, penalties | ``reset``, ``gather_penalties`` | construction, ``reset`` |
 | map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
@@ -56,6 +56,9 @@ PAD = stencil.REACH
 #: launch; beyond, each iteration is a parallel launch. Measured on the 2-core VM: waking the worker threads costs
 #: about 55 µs a launch, and one thread relaxes a dense layer of up to about 1000 tiles as fast as two.
 SERIAL_TILES = 512
+#: Width, in cells of distance, of the buckets in which converge() settles tiles: a round settles the active tiles
+#: whose key (the smallest value that woke them) is within SETTLE_BAND of the lowest key (measured, RESULTS §2).
+SETTLE_BAND = 256.0
 #: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
@@ -138,6 +141,16 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
         return result
 
     @ti.func
+    def lowest(value):
+        """The smallest lane of a packed value (the value itself for a scalar layer)."""
+        out = 0.0
+        if ti.static(lanes == 0):
+            out = value
+        else:
+            out = value.min()
+        return out
+
+    @ti.func
     def store(arr: ti.template(), g, i, j, lane, value):
         """Write ``value`` into component ``lane`` of arr[g, i, j] (the whole cell for a scalar layer), storing only
         that component: other lanes of the cell may be written by other threads at the same time."""
@@ -185,7 +198,7 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
         layer = g * width + lane
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
-    return dict(broadcast=broadcast, component=component, differs=differs, store=store, updated=updated,
+    return dict(broadcast=broadcast, component=component, differs=differs, lowest=lowest, store=store, updated=updated,
                 successor_move=successor_move, window_cell=window_cell, width=width,
                 first_column=0 if lanes == 0 else 1)
 
@@ -203,6 +216,33 @@ def _stamp_around(stamps: ti.template(), g, ta, tb, u, v, value):
 
 
 @ti.func
+def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, tick, key):
+    """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches, lowering their keys to
+    ``key`` (the smallest new value among the cell's lanes: the earliest any of them may change)."""
+    for da in ti.static(range(-1, 2)):
+        for db in ti.static(range(-1, 2)):
+            near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
+            near_b = db == 0 or (db < 0 and v < PAD) or (db > 0 and v >= TILE - PAD)
+            a, b = ta + da, tb + db
+            if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
+                stamps[g, a, b] = tick
+                ti.atomic_min(keys[g, a, b], key)
+
+
+@ti.func
+def _settling_bound(stamps: ti.template(), keys: ti.template(), tick):
+    """The largest key a tile may have to be settled in round ``tick``: the lowest finite key among the active tiles
+    plus SETTLE_BAND (inf when none is finite), as delta-stepping's buckets."""
+    lowest = ti.math.inf
+    for g in range(stamps.shape[0]):
+        for a in range(stamps.shape[1]):
+            for b in range(stamps.shape[2]):
+                if stamps[g, a, b] >= tick:
+                    ti.atomic_min(lowest, keys[g, a, b])
+    return lowest + SETTLE_BAND
+
+
+@ti.func
 def _active_tiles(stamps: ti.template(), tick):
     """The number of tiles stamped for iteration ``tick``."""
     count = 0
@@ -214,10 +254,26 @@ def _active_tiles(stamps: ti.template(), tick):
     return count
 
 
+@ti.func
+def _oriented(index, count, sweep, axis):
+    """``index`` of ``count`` along ``axis`` (1: rows, 2: columns) in the order of sweep number ``sweep``: sweeps cycle
+    through the four diagonal directions (rows forwards and backwards, times columns), as fast sweeping does, so that
+    a wave from a source anywhere runs with the order in at least one of any four consecutive sweeps."""
+    backwards = (sweep // axis) % 2 == 1
+    return count - 1 - index if backwards else index
+
+
+@ti.func
+def _sweep(header: ti.template(), rows, cols, tick):
+    """The sweep number of round ``tick``, ``_oriented``'s directions starting (at a tick that is a multiple of 4) with
+    the one that runs away from the source."""
+    return tick + ti.select(header[SOURCE_ROW] - PAD >= rows // 2, 1, 0) + ti.select(header[SOURCE_COL] - PAD >= cols // 2, 2, 0)
+
+
 def _tile_rules(cell: dict) -> dict:
     """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
     A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``header`` (HEADER_FIELDS)."""
-    updated, differs = cell["updated"], cell["differs"]
+    updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
     component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
     first_column = cell["first_column"]
 
@@ -260,54 +316,83 @@ def _tile_rules(cell: dict) -> dict:
                 relax_tile(src, dst, pen, stamps, header, cap, g, ta, tb, tick)
 
     @ti.func
-    def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), header: ti.template(), cap,
-                    g, ta, tb, tick):
-        """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``): sweep its cells,
-        alternately forwards and backwards, until they stop changing (in cache), stamping ``tick + 1`` on the
-        neighbouring tiles that its changed border cells reach. Returns 1 if the tile changed.
+    def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
+                    header: ti.template(), cap, g, ta, tb, tick, bound, lifting):
+        """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its key at
+        most ``bound``, or inf: due at once); an active tile not yet due is deferred to the next round. A due tile
+        sweeps its cells until they stop changing (in cache), each pass in the next of the four diagonal directions
+        starting from the round's (``_oriented``), and wakes the neighbouring tiles that its changed border cells
+        reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
 
-        From the initial caps values only fall and every value read is the length of some path to the source, so
-        races between threads are benign and the tiles settle to the unique fixed point of eqs. 5 and 10.
+        Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
+        source and a cell's relaxation never raises it (the caller guarantees that no cell is above its
+        relaxation), so races between threads are benign and the tiles settle to the unique fixed point of eqs. 5
+        and 10; the order (keys, directions) only decides how fast.
+
+        Lifting (``lifting`` 1), the raise wave of a repair: a lane whose relaxation is above its value (it lost the
+        move it was the minimum of) jumps to the cap, and the tile's key becomes -inf (lifted: due in the lowering
+        that follows). Values only rise, so races are benign here too; once no tile lifts, no cell is above its
+        relaxation.
         """
-        touched = 0
+        pending = 0
         if stamps[g, ta, tb] >= tick:
-            rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
-            passes, changed_here = 0, 1
-            while changed_here and passes < 4 * TILE:
-                changed_here = 0
-                for k in range(TILE * TILE):
-                    kk = k if passes % 2 == 0 else TILE * TILE - 1 - k
-                    u, v = kk // TILE, kk % TILE
-                    r, c = ta * TILE + u, tb * TILE + v
-                    if r < rows and c < cols:
-                        new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
-                        if differs(new, values[g, r + PAD, c + PAD]):
-                            values[g, r + PAD, c + PAD] = new
-                            changed_here = 1
-                            if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
-                passes += 1
-            if passes > 1:
-                touched = 1
-            if changed_here:
+            if keys[g, ta, tb] > bound and keys[g, ta, tb] < ti.math.inf:
                 stamps[g, ta, tb] = tick + 1
-        return touched
+                pending = 1
+            else:
+                rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
+                sweep = _sweep(header, rows, cols, tick)
+                passes, changed_here = 0, 1
+                while changed_here and passes < 4 * TILE:
+                    changed_here = 0
+                    for k in range(TILE * TILE):
+                        u = _oriented(k // TILE, TILE, sweep + passes, 1)
+                        v = _oriented(k % TILE, TILE, sweep + passes, 2)
+                        r, c = ta * TILE + u, tb * TILE + v
+                        if r < rows and c < cols:
+                            old = values[g, r + PAD, c + PAD]
+                            new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
+                            if lifting:
+                                new = ti.select(new > old, broadcast(cap), old)
+                            if differs(new, old):
+                                values[g, r + PAD, c + PAD] = new
+                                changed_here = 1
+                                if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                                    _wake_around(stamps, keys, g, ta, tb, u, v, tick + 1, lowest(new))
+                    passes += 1
+                if not lifting:
+                    keys[g, ta, tb] = ti.math.inf
+                elif passes > 1:
+                    keys[g, ta, tb] = -ti.math.inf
+                if passes > 1:
+                    pending = 1
+                if changed_here:
+                    stamps[g, ta, tb] = tick + 1
+        return pending
 
     @ti.func
-    def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), header: ti.template(), cap,
-                   tick, serial: ti.template()):
-        """One round of ``settle_tile`` over every tile: a parallel loop at a kernel's top level, ``serial`` loops
-        inside a loop. Returns the number of tiles that changed."""
-        touched = 0
+    def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
+                   header: ti.template(), cap, tick, lifting, serial: ti.template()):
+        """One round of ``settle_tile`` over the tiles due (``_settling_bound``; every active tile when ``lifting``),
+        visited in the round's diagonal direction (``_oriented``): a parallel loop at a kernel's top level,
+        ``serial`` loops inside a loop. Returns the number of tiles that changed or wait (0: settled)."""
+        pending = 0
+        bound = ti.math.inf
+        if not lifting:
+            bound = _settling_bound(stamps, keys, tick)
+        tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
+        sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
         if ti.static(serial):
             for g in range(stamps.shape[0]):
-                for ta in range(stamps.shape[1]):
-                    for tb in range(stamps.shape[2]):
-                        touched += settle_tile(values, pen, stamps, header, cap, g, ta, tb, tick)
+                for a in range(tiles_a):
+                    for b in range(tiles_b):
+                        ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
+                        pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, bound, lifting)
         else:
-            for g, ta, tb in stamps:
-                touched += settle_tile(values, pen, stamps, header, cap, g, ta, tb, tick)
-        return touched
+            for g, a, b in stamps:
+                ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
+                pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, bound, lifting)
+        return pending
 
     @ti.func
     def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
@@ -352,6 +437,7 @@ class _Kernels:
         Ints = ti.types.ndarray(dtype=ti.i32, ndim=1)  # noqa: N806
         Cells = Origins = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
         Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
+        Keys = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
         Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
         made = []
 
@@ -397,23 +483,24 @@ class _Kernels:
             return done
 
         @kernel
-        def settle(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32, tick: ti.i32) -> ti.i32:
-            """One round of in-place settling, the tiles shared out among the threads; returns the number of tiles
-            that changed."""
-            return settle_all(values, pen, stamps, header, cap, tick, False)
+        def settle(values: Values, pen: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
+                   run: ti.types.vector(2, ti.i32)) -> ti.i32:
+            """One round of in-place settling (run = (tick, lifting)), the tiles shared out among the threads;
+            returns the number of tiles that changed or wait."""
+            return settle_all(values, pen, stamps, keys, header, cap, run[0], run[1], False)
 
         @kernel
-        def settle_serially(values: Values, pen: Values, stamps: Stamps, header: Ints, cap: ti.f32,
-                            run: ti.types.vector(3, ti.i32), result: Ints):
+        def settle_serially(values: Values, pen: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
+                            run: ti.types.vector(4, ti.i32), result: Ints):
             """Up to ``rounds`` rounds of settling on the calling thread (run = (tick, rounds, limit)), until one
             changes no tile or more than ``limit`` tiles are active. result[0] = the rounds done, result[1] = the
             tiles the last of them changed (0: settled)."""
-            tick, rounds, limit = run[0], run[1], run[2]
+            tick, rounds, limit, lifting = run[0], run[1], run[2], run[3]
             done, touched = 0, 1
             while done < rounds and touched > 0:
                 if _active_tiles(stamps, tick + done) > limit:
                     break
-                touched = settle_all(values, pen, stamps, header, cap, tick + done, True)
+                touched = settle_all(values, pen, stamps, keys, header, cap, tick + done, lifting, True)
                 done += 1
             result[0] = done
             result[1] = touched
@@ -535,7 +622,9 @@ class _Layers:
     """One kind of layer, self-describing: the goal's (scalar, ``lanes`` = 0) or the node windows (``lanes`` packed
     per cell). It holds its kernels, two value buffers (Jacobi: ``src`` the values, ``dst`` the next), the
     penalties ``pen``, the ``header`` (CHANGED, SOURCE_ROW, SOURCE_COL), each lane's ``origins`` (grid coordinates
-    of its cell (0, 0)), its ``cap`` and the active-tile ``stamps``, under the names the kernels' parameters use."""
+    of its cell (0, 0)), its ``cap``, the active-tile ``stamps`` (the last iteration or round a tile is active for)
+    and ``keys`` (the smallest value that woke an active tile, inf: unknown, due at once; settling only), under the
+    names the kernels' parameters use."""
 
     def __init__(self, kernels: _Kernels, groups: int, side: tuple[int, int], origins: np.ndarray,
                  source: tuple[int, int], cap: float):
@@ -547,6 +636,7 @@ class _Layers:
         self.grid_origins = np.asarray(origins, np.int32)
         self.origins = _device(self.grid_origins)
         self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
+        self.keys = ti.ndarray(ti.f32, self.stamps.shape)
         self.header = _device(np.array([0, source[0], source[1]], np.int32))
         self.current = 0  # which buffer holds the values
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
@@ -578,6 +668,7 @@ class _Layers:
 
     def activate_all(self) -> None:
         self.stamps.fill(self.tick)
+        self.keys.fill(math.inf)
         self.woken = self.tick
 
     def deactivate_all(self) -> None:
@@ -599,10 +690,20 @@ class _Layers:
         self.activate_cells(cells)
 
     def reset(self) -> None:
-        """Both buffers back to the initial state of eqs. 5 and 10, every tile active."""
+        """Both buffers back to the initial state of eqs. 5 and 10; only the tiles within the stencil's reach of the
+        source are active (every other cell and its inputs hold the cap: it cannot change before a change reaches
+        it)."""
         self.kernels.reset(src=self.src, dst=self.dst, pen=self.pen, header=self.header, cap=self.cap)
         self.rebase()
-        self.activate_all()
+        self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
+        stamps = np.full(self.stamps.shape, -1, np.int32)
+        source = np.array([self.header[SOURCE_ROW], self.header[SOURCE_COL]]) - PAD
+        for reach in np.array(np.meshgrid([-PAD, 0, PAD], [-PAD, 0, PAD])).reshape(2, -1).T:
+            a, b = np.clip(source + reach, 0, [self.rows - 1, self.cols - 1]) // TILE
+            stamps[:, a, b] = self.tick
+        self.stamps.from_numpy(stamps)
+        self.keys.fill(math.inf)
+        self.woken = self.tick
 
     def _waves(self, count: int, serially, in_parallel) -> tuple[int, bool]:
         """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
@@ -639,29 +740,51 @@ class _Layers:
         return dict(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                     origins=self.origins, cap=self.cap)
 
-    def settle(self, max_rounds: int | None) -> int:
-        """Rounds of in-place tile settling until one changes no tile, or ``max_rounds``; then both buffers hold the
-        result and only an unsettled layer stays active. Returns the rounds done."""
-        result = np.zeros(2, np.int32)
-        arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, header=self.header, cap=self.cap)
+    def converge(self, max_rounds: int | None) -> int:
+        """Repair: from the current values to the fixed point, in time that grows with the region the edits since
+        the last converge affect. Returns the rounds done (lifting and lowering), at most ``max_rounds``.
 
-        def serially(first: int, rounds: int, limit: int) -> tuple[int, bool]:
-            self.kernels.settle_serially(**arrays, run=(self.tick, rounds, limit), result=result)
+        Cells outside the active tiles are at their relaxation (an invariant of iterating, settling and editing:
+        only a change wakes a tile). First the raise wave: in the active tiles and those it wakes, every lane above
+        its relaxation - it depended on a cell that became an obstacle, or on the old source - jumps to the cap,
+        until none is. Then no cell is above its relaxation, so every value is at least the new fixed point's (a
+        chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
+        as from the initial state, bit for bit. Only the tiles active at the start or lifted are lowered."""
+        limit = _NEVER if max_rounds is None else max_rounds
+        touched = self.stamps.to_numpy() >= self.tick
+        lifted = self._rounds(limit, lifting=1)
+        touched |= self.keys.to_numpy() == -np.inf
+        self.stamps.from_numpy(np.where(touched, self.tick, -1).astype(np.int32))
+        self.keys.fill(math.inf)
+        if lifted[1]:
+            lowered = self._rounds(limit - lifted[0], lifting=0)
+        else:
+            lowered = (0, False)
+        self.dst.copy_from(self.values)
+        if lowered[1]:
+            self.deactivate_all()
+        else:
+            self.activate_all()
+        return lifted[0] + lowered[0]
+
+    def _rounds(self, limit: int, lifting: int) -> tuple[int, bool]:
+        """Up to ``limit`` rounds of settling (``lifting``: of the raise wave) until one leaves no tile pending;
+        returns (rounds, finished)."""
+        result = np.zeros(2, np.int32)
+        arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
+                      cap=self.cap)
+
+        def serially(first: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
+            self.kernels.settle_serially(**arrays, run=(self.tick, rounds, serial_limit, lifting), result=result)
             self.tick += int(result[0])
             return int(result[0]), int(result[1]) == 0
 
         def in_parallel(first: int) -> bool:
-            touched = self.kernels.settle(**arrays, tick=self.tick)
+            pending = self.kernels.settle(**arrays, run=(self.tick, lifting))
             self.tick += 1
-            return touched == 0
+            return pending == 0
 
-        rounds, settled = self._waves(_NEVER if max_rounds is None else max_rounds, serially, in_parallel)
-        self.dst.copy_from(self.values)
-        if settled:
-            self.deactivate_all()
-        else:
-            self.activate_all()
-        return rounds
+        return self._waves(limit, serially, in_parallel)
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
@@ -774,6 +897,7 @@ class Engine:
         for layers in self._layers:
             layers.reset()
         self.iterations = 0
+        self._goal_moved = False
 
     def activate_all(self) -> None:
         """Make the next iteration relax every tile (a dense iteration; the result is the same)."""
@@ -807,16 +931,23 @@ class Engine:
         return sum(layers.changed() for layers in self._layers)
 
     def converge(self, max_rounds: int | None = None) -> int:
-        """Relax from the initial state to the fixed point; return the rounds it took (the larger count of the two
-        kinds of layer).
+        """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
+        exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds it took
+        (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
 
-        Each round settles every active tile in place (several sweeps in cache) and wakes the neighbours its border
-        changes reach; it ends when no tile changes. The fixed point of eqs. 5 and 10 is unique, so the result
-        equals what synchronous iterations reach, bit for bit. While few tiles are active, rounds run one after
+        Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
+        of SETTLE_BAND and alternating diagonal directions) and wakes the neighbours its border changes reach; it
+        ends when no tile changes. The fixed point of eqs. 5 and 10 is unique, so the result equals what synchronous
+        iterations reach from the initial state, bit for bit. After a goal move the goal layer starts again from
+        the initial state (every value depended on the old goal). While few tiles are active, rounds run one after
         another in a single launch.
         """
-        self.reset()
-        return max(layers.settle(max_rounds) for layers in self._layers)
+        if self._goal_moved:
+            self._goal.reset()
+            self._goal_moved = False
+        rounds = max(layers.converge(max_rounds) for layers in self._layers)
+        self.iterations = 0
+        return rounds
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
@@ -844,6 +975,7 @@ class Engine:
         self.goal = (int(goal[0]), int(goal[1]))
         self._goal.move_source((self.goal[0] + PAD, self.goal[1] + PAD))
         self._goal.activate_cells(moved)
+        self._goal_moved = True
 
     # -- reading -----------------------------------------------------------------------------------------------
     def goal_distances(self) -> np.ndarray:

@@ -63,7 +63,7 @@ class DistanceField:
 
     @property
     def iterations(self) -> int:
-        """Synchronous iterations run since the initial state (:meth:`converge` restarts from it and leaves 0)."""
+        """Synchronous iterations run since the initial state or the last :meth:`converge` (which leaves 0)."""
         return self._engine.iterations
 
     @property
@@ -78,14 +78,21 @@ class DistanceField:
         return self._engine.changed() if k else 0
 
     def converge(self, max_rounds: int | None = None) -> int:
-        """Relax to the exact fixed point (the setup phase); return the number of rounds it took.
+        """Relax to the exact fixed point: the setup phase, and the repair after edits; return the rounds it took.
 
-        Starts again from the initial state and settles 8 x 8 tiles in place, each sweeping in cache until stable
-        and waking the neighbours its border changes reach, until no tile changes (ARCHITECTURE §7); the
-        result equals synchronous iteration to convergence exactly. ``max_rounds`` bounds the rounds.
+        Works from the current values: after :meth:`set_occupied` it lifts to inf (or ``d_max``) the values that
+        lost their route, then settles 8 x 8 tiles in place, each sweeping in cache until stable and waking the
+        neighbours its border changes reach, until no tile changes (ARCHITECTURE §7), so its time grows with the
+        region the edits affect; after :meth:`set_goal` it starts again from the initial state. The result equals
+        a fresh field's converge() and synchronous iteration to convergence, bit for bit. ``max_rounds`` bounds the
+        rounds; :attr:`iterations` is 0 after it.
         """
         max_rounds = checks.optional_integer(max_rounds, "max_rounds", 1)
         return self._engine.converge(max_rounds)
+
+    def reset(self) -> None:
+        """Back to the initial state: 0 at the goal, ``d_max`` elsewhere, iteration 0 (map edits kept)."""
+        self._engine.reset()
 
     def distances(self) -> np.ndarray:
         """float32 (H, W) distances in cells: inf (or ``d_max``) where the goal is not reached."""

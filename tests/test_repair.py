@@ -1,0 +1,136 @@
+"""converge() after edits repairs from the current values: bit for bit what a fresh converge on the same map gives,
+through blockages, cut-off pockets, re-openings, goal moves and iterations in between, on every stencil, node layers
+included."""
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import tdp
+from tdp import engine as engine_module
+from tdp.engine import Engine
+
+OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "step"]
+
+
+@st.composite
+def edit_sequences(draw):
+    rows, cols = draw(st.integers(6, 40)), draw(st.integers(6, 40))
+    density = draw(st.sampled_from([0.0, 0.1, 0.25]))
+    seed = draw(st.integers(0, 2**31))
+    operations = draw(st.lists(st.sampled_from(OPERATIONS), min_size=1, max_size=6))
+    return rows, cols, density, seed, operations
+
+
+def apply(operation: str, engine: Engine, rng: np.random.Generator) -> None:
+    """One edit of the kind named, at a random place: a 3 x 3 box (occupied or freed), a wall across the map with
+    or without a gap (cutting off a pocket) or its removal, scattered cells, a goal move, or a few iterations."""
+    rows, cols = engine.occupied.shape
+    if operation in ("box", "free_box"):
+        r, c = rng.integers(0, rows - 2), rng.integers(0, cols - 2)
+        cells = np.array([(r + i, c + j) for i in range(3) for j in range(3)])
+        cells = cells[[tuple(cell) != engine.goal for cell in cells]]
+        engine.set_cells(cells, np.full(len(cells), operation == "box"))
+    elif operation in ("wall", "open_wall"):
+        if rng.random() < 0.5:
+            line = [(int(rng.integers(0, rows)), c) for c in range(cols)]
+        else:
+            column = int(rng.integers(0, cols))
+            line = [(r, column) for r in range(rows)]
+        line = [cell for cell in line if cell != engine.goal]
+        if operation == "wall" and rng.random() < 0.5:
+            line.pop(int(rng.integers(0, len(line))))  # a gap
+        engine.set_cells(np.array(line), np.full(len(line), operation == "wall"))
+    elif operation == "scatter":
+        cells = np.argwhere(rng.random((rows, cols)) < 0.05)
+        cells = cells[[tuple(cell) != engine.goal for cell in cells]]
+        engine.set_cells(cells, rng.random(len(cells)) < 0.6)
+    elif operation == "goal":
+        free = np.argwhere(~engine.occupied)
+        engine.set_goal(tuple(free[rng.integers(0, len(free))]))
+    else:
+        engine.step(int(rng.integers(1, 6)))
+
+
+def assert_equal_to_a_fresh_converge(engine: Engine, options: dict) -> None:
+    fresh = Engine(engine.occupied, engine.goal, **options)
+    fresh.converge()
+    np.testing.assert_array_equal(engine.goal_distances(), fresh.goal_distances())
+    for node in range(len(engine.nodes)):
+        np.testing.assert_array_equal(engine.node_distances(node), fresh.node_distances(node),
+                                      err_msg=f"node layer {node}")
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans())
+def test_repair_equals_a_fresh_converge_bit_for_bit(sequence, neighbourhood, corner_cutting, with_nodes):
+    rows, cols, density, seed, operations = sequence
+    rng = np.random.default_rng(seed)
+    occupied = rng.random((rows, cols)) < density
+    occupied[0, 0] = False
+    options = dict(neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+    if with_nodes:
+        options.update(nodes=np.argwhere(np.ones((rows, cols), bool))[::7], node_cap=6.5)
+    engine = Engine(occupied, (0, 0), **options)
+    engine.converge()
+    for operation in operations:
+        apply(operation, engine, rng)
+        if operation != "step" or rng.random() < 0.5:
+            engine.converge()
+            assert_equal_to_a_fresh_converge(engine, options)
+
+
+@pytest.mark.parametrize("serial_tiles", [0, 10**6])  # parallel rounds, serial rounds
+def test_a_pocket_cut_off_rises_to_inf_and_reopening_restores_it(monkeypatch, serial_tiles):
+    """A wall closing a 40 x 40 pocket on a 96 x 96 map: the pocket's values rise to inf (not counting up for ever)
+    and come back exactly when the wall opens; cells outside keep their values."""
+    monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
+    occupied = np.zeros((96, 96), bool)
+    engine = Engine(occupied, (0, 0))
+    engine.converge()
+    before = engine.goal_distances().copy()
+    wall = np.array([(40, c) for c in range(56, 96)] + [(r, 56) for r in range(40, 96)])
+    engine.set_cells(wall, np.ones(len(wall), bool))
+    engine.converge()
+    after = engine.goal_distances()
+    assert np.isinf(after[41:, 57:]).all()
+    np.testing.assert_array_equal(after[:40, :56], before[:40, :56])
+    assert_equal_to_a_fresh_converge(engine, {})
+    engine.set_cells(wall, np.zeros(len(wall), bool))
+    engine.converge()
+    np.testing.assert_array_equal(engine.goal_distances(), before)
+
+
+def test_distance_field_repairs_after_set_occupied_and_set_goal():
+    """The public face: DistanceField.converge() after edits equals a fresh field's converge()."""
+    occupied = np.random.default_rng(5).random((50, 60)) < 0.2
+    occupied[0, 0] = occupied[49, 59] = False
+    field = tdp.DistanceField(tdp.GridMap(occupied), (0, 0))
+    field.converge()
+    field.set_occupied([(r, 30) for r in range(0, 45)])
+    field.converge()
+    occupied[0:45, 30] = True
+    fresh = tdp.DistanceField(tdp.GridMap(occupied), (0, 0))
+    fresh.converge()
+    np.testing.assert_array_equal(field.distances(), fresh.distances())
+    field.set_goal((49, 59))
+    field.converge()
+    fresh = tdp.DistanceField(tdp.GridMap(occupied), (49, 59))
+    fresh.converge()
+    np.testing.assert_array_equal(field.distances(), fresh.distances())
+
+
+def test_a_closed_door_sends_the_region_behind_it_round_by_the_far_door():
+    """Two doors in a wall; closing the near one raises everything behind it, and the new values enter from the far
+    door, 30 cells (four tiles) from the edit: the lowering must start where the raise wave ended, not only at the
+    edit."""
+    occupied = np.zeros((40, 48), bool)
+    occupied[20, :] = True
+    occupied[20, 4:7] = False  # near door
+    occupied[20, 40:43] = False  # far door
+    engine = Engine(occupied, (0, 5))
+    engine.converge()
+    engine.set_cells(np.array([(20, c) for c in range(4, 7)]), np.ones(3, bool))
+    engine.converge()
+    assert np.isfinite(engine.goal_distances()[21:, :]).all()
+    assert_equal_to_a_fresh_converge(engine, {})
