@@ -516,6 +516,18 @@ class _Kernels:
                 dst[g, i, j] = value
 
         @kernel
+        def mirror(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
+            """Copy into ``dst`` the cells of the tiles stamped for ``tick`` or later (the only ones settling can
+            have changed since round ``tick``), so that both buffers hold the same values."""
+            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
+            for g, ta, tb in stamps:
+                if stamps[g, ta, tb] >= tick:
+                    for u, v in ti.ndrange(TILE, TILE):
+                        r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
+                        if r < rows + PAD and c < cols + PAD:
+                            dst[g, r, c] = src[g, r, c]
+
+        @kernel
         def gather_penalties(pen: Values, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
             """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
             blocked and in the padding): inf outside the grid and in the layer's own padding."""
@@ -751,6 +763,7 @@ class _Layers:
         chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
         as from the initial state, bit for bit. Only the tiles active at the start or lifted are lowered."""
         limit = _NEVER if max_rounds is None else max_rounds
+        first = self.tick
         touched = self.stamps.to_numpy() >= self.tick
         lifted = self._rounds(limit, lifting=1)
         touched |= self.keys.to_numpy() == -np.inf
@@ -760,7 +773,7 @@ class _Layers:
             lowered = self._rounds(limit - lifted[0], lifting=0)
         else:
             lowered = (0, False)
-        self.dst.copy_from(self.values)
+        self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
         if lowered[1]:
             self.deactivate_all()
         else:
