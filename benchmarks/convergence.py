@@ -1,11 +1,17 @@
-"""The setup phase: DistanceField.converge() next to scipy's Dijkstra on the same 16-neighbour graph.
+"""The setup phase and its repair: DistanceField.converge() next to scipy's Dijkstra (and scikit-fmm) in one process.
 
     python -m benchmarks.convergence [--quick]
 
-Random maps (20 % obstacles) of growing size and the MovingAI maps in ../shared/data (skipped when absent). The
-graph is built once and timed apart; Dijkstra's solve and converge() are warm medians of repeats in the same
-process; the results are checked equal. Also counted: converge()'s rounds of tile settling, and, up to
-512 x 512, the synchronous (Jacobi) iterations that step() needs to reach the same fixed point.
+Maps: random (20 % obstacles) of growing size, each with goals at a corner, the centre and a random cell; the
+MovingAI maps in ../shared/data with several scenario goals each; the ROS turtlebot3 map (both skipped when
+absent). The 16-neighbour graph is built once and timed apart; Dijkstra's solve, scikit-fmm's whole-field distance
+(when installed; a different, continuous distance, timed only) and a from-scratch converge() (``reset()`` then
+``converge()``) are warm medians of repeats in the same process, and the field is checked equal to Dijkstra's.
+
+Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle of the optimal route
+from the farthest reachable cell, a wall of 16 cells across that route, and a goal move; each timed as edit +
+``converge()`` (the edit undone, untimed, between repeats), checked bit for bit against a fresh field's converge()
+on the edited map, and set against the from-scratch converge() on the edited map.
 """
 from __future__ import annotations
 
@@ -19,35 +25,76 @@ import tdp
 from benchmarks.common import median_time, print_table, quick_parser, save_results
 from benchmarks.reference_graph import grid_graph
 
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai"
-SIZES, QUICK_SIZES = [128, 256, 512, 1024], [64, 128]
+SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"
+SIZES, QUICK_SIZES = [256, 512, 1024, 2048], [64, 128]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
+GOALS_PER_MAP = 3
+LARGE = 65536  # maps from this size on get the repair cases and the worst-case target (4096 with --quick)
+WALL = 16
+
+try:
+    import skfmm
+except ImportError:  # an optional reference: pip install scikit-fmm
+    skfmm = None
 
 
-def random_map(size: int) -> tuple[np.ndarray, tuple[int, int]]:
+def random_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A random map with 20 % obstacles and its goals: a corner, the centre, a random free cell."""
     occupied = np.random.default_rng(size).random((size, size)) < 0.2
-    occupied[0, 0] = False
-    return occupied, (0, 0)
+    free = np.argwhere(~occupied)
+    goals = {"corner": (0, 0), "centre": (size // 2, size // 2),
+             "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
+    cases = []
+    for place, goal in goals.items():
+        grid = occupied.copy()
+        grid[goal] = False
+        cases.append((f"random {size}² {place}", grid, goal))
+    return cases
 
 
-def movingai_map(name: str) -> tuple[np.ndarray, tuple[int, int]] | None:
-    path = SHARED / f"{name}.map"
+def movingai_cases(name: str) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    path = SHARED / "movingai" / f"{name}.map"
     if not path.exists():
-        return None
+        print(f"  {name}: not found in {path.parent}, skipped")
+        return []
     grid = tdp.load_map(path)
-    goal = tdp.load_scenarios(SHARED / f"{name}.map.scen", grid)[-1].goal
-    return grid.occupied, goal
+    scenarios = tdp.load_scenarios(path.with_suffix(".map.scen"), grid)
+    picks = np.linspace(len(scenarios) - 1, 0, GOALS_PER_MAP).astype(int)
+    return [(f"{name} #{k}", grid.occupied, scenarios[k].goal) for k in picks]
 
 
-def jacobi_iterations(occupied: np.ndarray, goal) -> int:
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal)
-    iterations = 0
-    while field.step():
-        iterations += 1
-    return iterations
+def ros_cases() -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    path = SHARED / "ros" / "turtlebot3_world" / "map.yaml"
+    if not path.exists():
+        print(f"  turtlebot3_world: not found in {path.parent}, skipped")
+        return []
+    occupied = tdp.load_map(path).occupied
+    free = np.argwhere(~occupied)
+    rng = np.random.default_rng(0)
+    return [(f"turtlebot3_world #{k}", occupied, tuple(int(v) for v in free[rng.integers(len(free))]))
+            for k in range(GOALS_PER_MAP)]
 
 
-def measure(name: str, occupied: np.ndarray, goal, repeats: int) -> dict:
+def field_on(occupied: np.ndarray, goal) -> tdp.DistanceField:
+    return tdp.DistanceField(tdp.GridMap(occupied), goal)
+
+
+def from_scratch(field: tdp.DistanceField) -> None:
+    field.reset()
+    field.converge()
+
+
+def fmm_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
+    """scikit-fmm's whole-field distance from the goal around the obstacles (masked), or None when absent."""
+    if skfmm is None:
+        return None
+    phi = np.ones(occupied.shape)
+    phi[goal] = -1.0
+    phi = np.ma.MaskedArray(phi, mask=np.array(occupied))
+    return median_time(lambda: skfmm.distance(phi), repeats)
+
+
+def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: int) -> dict:
     rows, cols = occupied.shape
     began = time.perf_counter()
     graph = grid_graph(occupied).T.tocsr()  # transposed: distances *to* the goal
@@ -55,40 +102,99 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int) -> dict:
     source = goal[0] * cols + goal[1]
     reference = dijkstra(graph, indices=source).reshape(rows, cols)
     dijkstra_s = median_time(lambda: dijkstra(graph, indices=source), repeats)
-    field = tdp.DistanceField(tdp.GridMap(occupied), goal)
+    field = field_on(occupied, goal)
     rounds = field.converge()
-    converge_s = median_time(field.converge, repeats)
+    converge_s = median_time(lambda: from_scratch(field), repeats)
     ours = field.distances()
     finite = np.isfinite(reference)
     exact = bool(np.array_equal(np.isfinite(ours), finite)) and bool(
         np.allclose(ours[finite], reference[finite], rtol=1e-5))
-    result = {"map": name, "cells": rows * cols, "free": int((~occupied).sum()), "build_ms": build_s * 1e3,
-              "dijkstra_ms": dijkstra_s * 1e3, "converge_ms": converge_s * 1e3, "rounds": rounds,
-              "ratio": converge_s / dijkstra_s, "equal": exact}
-    if rows * cols <= 512 * 512:
-        result["jacobi_iterations"] = jacobi_iterations(occupied, goal)
+    fmm_s = fmm_seconds(occupied, goal, repeats)
+    result = {"map": name, "cells": rows * cols, "build_ms": build_s * 1e3, "dijkstra_ms": dijkstra_s * 1e3,
+              "converge_ms": converge_s * 1e3, "rounds": rounds, "ratio": converge_s / dijkstra_s, "equal": exact,
+              "fmm_ms": None if fmm_s is None else fmm_s * 1e3,
+              "fmm_ratio": None if fmm_s is None else converge_s / fmm_s}
+    if rows * cols >= repair_cells:
+        result["repairs"] = [measure_repair(field, kind, reference, repeats) for kind in ("box", "wall", "goal")]
     return result
+
+
+def route_middle(field: tdp.DistanceField, reference: np.ndarray) -> tuple[tuple[int, int], tuple[int, int]]:
+    """The middle cell of the optimal route from the farthest reachable cell, and that route's direction there."""
+    reachable = np.where(np.isfinite(reference), reference, -1.0)
+    start = tuple(int(v) for v in np.unravel_index(np.argmax(reachable), reference.shape))
+    path = field.path(start)
+    middle = len(path) // 2
+    after = path[min(middle + 1, len(path) - 1)]
+    return path[middle], (after[0] - path[middle][0], after[1] - path[middle][1])
+
+
+def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
+    """(apply, undo) of one repair case on a converged field."""
+    goal = field.goal
+    if kind == "goal":
+        free = np.argwhere(~field.occupied)
+        target = tuple(int(v) for v in free[np.random.default_rng(len(free)).integers(len(free))])
+        return (lambda: field.set_goal(target)), (lambda: field.set_goal(goal))
+    (r, c), (dr, dc) = route_middle(field, reference)
+    rows, cols = reference.shape
+    if kind == "box":
+        cells = [(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
+    elif abs(dr) >= abs(dc):  # the route runs along the rows here: the wall runs across them
+        cells = [(r, c + j) for j in range(-WALL // 2, WALL // 2)]
+    else:
+        cells = [(r + i, c) for i in range(-WALL // 2, WALL // 2)]
+    cells = [cell for cell in cells if 0 <= cell[0] < rows and 0 <= cell[1] < cols and cell != goal
+             and not field.occupied[cell]]
+    return (lambda: field.set_occupied(cells)), (lambda: field.set_occupied(cells, False))
+
+
+def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int) -> dict:
+    """Edit + converge() from the converged field, against a fresh field's from-scratch converge() on the result."""
+    apply, undo = repair_edit(field, kind, reference)
+    times = []
+    for _ in range(repeats + 1):  # the first is a warm-up
+        apply()
+        began = time.perf_counter()
+        field.converge()
+        times.append(time.perf_counter() - began)
+        repaired = field.distances().copy()
+        undo()
+        field.converge()
+    apply()
+    fresh = field_on(field.occupied, field.goal)
+    fresh.converge()
+    scratch_s = median_time(lambda: from_scratch(fresh), repeats)
+    undo()
+    field.converge()
+    repair_s = float(np.median(times[1:]))
+    return {"kind": kind, "repair_ms": repair_s * 1e3, "scratch_ms": scratch_s * 1e3,
+            "ratio": repair_s / scratch_s, "equal": bool(np.array_equal(repaired, fresh.distances()))}
 
 
 def figure(results: list[dict], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
-
-    randoms = [r for r in results if r["map"].startswith("random ")]
-    fig, ax = plt.subplots(figsize=(6.5, 4.2))
-    cells = [r["cells"] for r in randoms]
-    for key, label in (("converge_ms", "tdp converge()"), ("dijkstra_ms", "scipy Dijkstra (solve)"),
-                       ("build_ms", "graph build (scipy side)")):
-        ax.loglog(cells, [r[key] for r in randoms], "o-", label=label)
-    for r in results:
-        if not r["map"].startswith("random "):
-            ax.loglog(r["cells"], r["converge_ms"], "k^")
-            ax.annotate(r["map"], (r["cells"], r["converge_ms"]), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("cells")
-    ax.set_ylabel("ms (median, warm)")
-    ax.set_title("setup phase: random maps (20% obstacles); triangles: MovingAI maps", fontsize=9)
-    ax.legend(fontsize=8)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    names = [r["map"] for r in results]
+    y = np.arange(len(results))
+    left.barh(y, [r["ratio"] for r in results], color="tab:blue")
+    left.axvline(1.0, color="k", lw=0.8)
+    left.set_yticks(y, names, fontsize=6)
+    left.invert_yaxis()
+    left.set_xlabel("from-scratch converge() / scipy Dijkstra (lower is faster)")
+    repaired = [(r["map"], q) for r in results for q in r.get("repairs", [])]
+    colours = {"box": "tab:green", "wall": "tab:orange", "goal": "tab:red"}
+    for k, (name, q) in enumerate(repaired):
+        right.barh(k, q["ratio"], color=colours[q["kind"]], label=q["kind"] if k < 3 else None)
+    right.set_yticks(range(len(repaired)), [f"{n} {q['kind']}" for n, q in repaired], fontsize=5)
+    right.invert_yaxis()
+    right.set_xscale("log")
+    right.axvline(0.1, color="k", lw=0.8, ls="--")
+    right.axvline(1.0, color="k", lw=0.8)
+    right.set_xlabel("repair / from-scratch converge() (log)")
+    right.legend(fontsize=7)
     save_figure(fig, path)
 
 
@@ -98,26 +204,44 @@ def main() -> None:
     args = parser.parse_args()
     sizes, maps = (QUICK_SIZES, QUICK_MAPS) if args.quick else (SIZES, MAPS)
     repeats = 3 if args.quick else args.repeats
-    cases = [(f"random {s}x{s}", *random_map(s)) for s in sizes]
-    for name in maps:
-        loaded = movingai_map(name)
-        if loaded is None:
-            print(f"  {name}: not found in {SHARED}, skipped")
-        else:
-            cases.append((name, *loaded))
+    cases = [case for size in sizes for case in random_cases(size)]
+    cases += [case for name in maps for case in movingai_cases(name)]
+    if not args.quick:
+        cases += ros_cases()
     results = []
     for name, occupied, goal in cases:
-        results.append(measure(name, occupied, goal, repeats))
+        results.append(measure(name, occupied, goal, repeats, 4096 if args.quick else LARGE))
         r = results[-1]
+        repairs = "".join(f", {q['kind']} {q['repair_ms']:.1f} ms ({q['ratio']:.2f}x)" for q in r.get("repairs", []))
         print(f"  {name}: converge {r['converge_ms']:.1f} ms ({r['rounds']} rounds), "
-              f"Dijkstra {r['dijkstra_ms']:.1f} ms", flush=True)
-    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra", "rounds",
-                 "Jacobi iterations", "equal"],
+              f"Dijkstra {r['dijkstra_ms']:.1f} ms{repairs}", flush=True)
+    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra",
+                 "scikit-fmm ms", "converge / fmm", "rounds", "equal"],
                 [[r["map"], str(r["cells"]), f"{r['build_ms']:.1f}", f"{r['dijkstra_ms']:.1f}",
-                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", str(r["rounds"]),
-                  str(r.get("jacobi_iterations", "-")), str(r["equal"])] for r in results])
-    save_results("convergence-quick" if args.quick else "convergence", {"results": results},
+                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}",
+                  "-" if r["fmm_ms"] is None else f"{r['fmm_ms']:.1f}",
+                  "-" if r["fmm_ratio"] is None else f"{r['fmm_ratio']:.2f}", str(r["rounds"]), str(r["equal"])]
+                 for r in results])
+    print_table(["map", "change", "repair ms", "from scratch ms", "repair / from scratch", "equal"],
+                [[r["map"], q["kind"], f"{q['repair_ms']:.2f}", f"{q['scratch_ms']:.1f}", f"{q['ratio']:.3f}",
+                  str(q["equal"])] for r in results for q in r.get("repairs", [])])
+    summary = summarise(results)
+    print(summary)
+    save_results("convergence-quick" if args.quick else "convergence", {"results": results, "summary": summary},
                  lambda png: figure(results, png))
+
+
+def summarise(results: list[dict]) -> dict:
+    """The issue's figures: median and worst from-scratch ratio (worst on maps of LARGE cells or more), and the
+    median and worst repair ratio for local changes (box, wall) and for any change."""
+    ratios = [r["ratio"] for r in results]
+    large = [r["ratio"] for r in results if r["cells"] >= LARGE] or [float("nan")]
+    repairs = [q for r in results for q in r.get("repairs", [])]
+    local = [q["ratio"] for q in repairs if q["kind"] != "goal"] or [float("nan")]
+    every = [q["ratio"] for q in repairs] or [float("nan")]
+    return {"converge_over_dijkstra_median": float(np.median(ratios)), "converge_over_dijkstra_worst_large":
+            float(max(large)), "local_repair_median": float(np.median(local)), "repair_worst": float(max(every)),
+            "all_equal": all(r["equal"] for r in results) and all(q["equal"] for q in repairs)}
 
 
 if __name__ == "__main__":
