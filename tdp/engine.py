@@ -203,22 +203,16 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
                 first_column=0 if lanes == 0 else 1)
 
 
-@ti.func
-def _stamp_around(stamps: ti.template(), g, ta, tb, u, v, value):
-    """Stamp tile (ta, tb) and the neighbours that cell (u, v) of it reaches with the stencil."""
-    for da in ti.static(range(-1, 2)):
-        for db in ti.static(range(-1, 2)):
-            near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
-            near_b = db == 0 or (db < 0 and v < PAD) or (db > 0 and v >= TILE - PAD)
-            a, b = ta + da, tb + db
-            if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
-                stamps[g, a, b] = value
+def _given(argument) -> bool:
+    """Whether a ti.func's optional template argument was given (Taichi scope has no ``is``)."""
+    return argument is not None
 
 
 @ti.func
 def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, tick, key):
-    """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches, lowering their keys to
-    ``key`` (the smallest new value among the cell's lanes: the earliest any of them may change)."""
+    """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches; with ``keys`` (None when
+    iterating: only settling orders tiles) lower theirs to ``key``, the smallest new value among the cell's lanes:
+    the earliest any of them may change."""
     for da in ti.static(range(-1, 2)):
         for db in ti.static(range(-1, 2)):
             near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
@@ -226,7 +220,8 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, ti
             a, b = ta + da, tb + db
             if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
                 stamps[g, a, b] = tick
-                ti.atomic_min(keys[g, a, b], key)
+                if ti.static(_given(keys)):
+                    ti.atomic_min(keys[g, a, b], key)
 
 
 @ti.func
@@ -295,7 +290,7 @@ def _tile_rules(cell: dict) -> dict:
                     new = updated(src, pen, header, cap, g, r + PAD, c + PAD)
                     if differs(new, src[g, r + PAD, c + PAD]):
                         changed += 1
-                        _stamp_around(stamps, g, ta, tb, u, v, tick + 1)
+                        _wake_around(stamps, None, g, ta, tb, u, v, tick + 1, 0.0)
                     dst[g, r + PAD, c + PAD] = new
             if changed:
                 ti.atomic_add(header[CHANGED], changed)
@@ -317,11 +312,11 @@ def _tile_rules(cell: dict) -> dict:
 
     @ti.func
     def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                    header: ti.template(), cap, g, ta, tb, tick, bound, lifting):
+                    header: ti.template(), cap, g, ta, tb, tick, sweep, bound, lifting):
         """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its key at
         most ``bound``, or inf: due at once); an active tile not yet due is deferred to the next round. A due tile
         sweeps its cells until they stop changing (in cache), each pass in the next of the four diagonal directions
-        starting from the round's (``_oriented``), and wakes the neighbouring tiles that its changed border cells
+        starting from the round's, ``sweep`` (``_oriented``), and wakes the neighbouring tiles that its changed border cells
         reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
 
         Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
@@ -341,7 +336,6 @@ def _tile_rules(cell: dict) -> dict:
                 pending = 1
             else:
                 rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
-                sweep = _sweep(header, rows, cols, tick)
                 passes, changed_here = 0, 1
                 while changed_here and passes < 4 * TILE:
                     changed_here = 0
@@ -387,11 +381,13 @@ def _tile_rules(cell: dict) -> dict:
                 for a in range(tiles_a):
                     for b in range(tiles_b):
                         ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
-                        pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, bound, lifting)
+                        pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, sweep,
+                                               bound, lifting)
         else:
             for g, a, b in stamps:
                 ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
-                pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, bound, lifting)
+                pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, sweep, bound,
+                                       lifting)
         return pending
 
     @ti.func
