@@ -24,7 +24,8 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of the raise wave, then of settling in place | ``settle_serially`` / ``settle`` | the same rule |
-| initial state, penalties | ``reset``, ``gather_penalties`` | construction, ``reset`` |
+| converge: the raise wave's tiles handed to lowering; both buffers equal after | ``prepare_lowering``, ``mirror`` | each converge |
+| initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
 
@@ -510,25 +511,15 @@ class _Kernels:
             result[1] = touched
 
         @kernel
-        def reset(src: Values, dst: Values, pen: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
-                  tick: ti.i32):
-            """The initial state of eqs. 5 and 10 in both buffers: 0 at a free source, the cap everywhere else; only
-            the tiles within the stencil's reach of the source active, for ``tick``, their keys unknown (inf). The
-            cells in a parallel loop over rows, each row a serial loop (a struct-for divides per cell, 10x slower)."""
-            for row in range(src.shape[0] * src.shape[1]):
-                g, i = row // src.shape[1], row % src.shape[1]
-                for j in range(src.shape[2]):
-                    src[g, i, j] = broadcast(cap)
-                    dst[g, i, j] = broadcast(cap)
-            for g, a, b in stamps:
-                stamps[g, a, b] = -1
-                keys[g, a, b] = ti.math.inf
+        def seed(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, tick: ti.i32):
+            """After both buffers are filled with the cap and every tile deactivated: 0 at a free source (eqs. 5 and
+            10), and the tiles within the stencil's reach of it active for ``tick``."""
             rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
             i, j = header[SOURCE_ROW], header[SOURCE_COL]
+            ti.loop_config(serialize=True)  # a few stores per layer group: cheaper than waking the threads
             for g in range(src.shape[0]):
-                value = ti.select(pen[g, i, j] > 0, broadcast(cap), broadcast(0.0))
-                src[g, i, j] = value
-                dst[g, i, j] = value
+                src[g, i, j] = ti.select(pen[g, i, j] > 0, src[g, i, j], broadcast(0.0))
+                dst[g, i, j] = src[g, i, j]
                 for da in ti.static(range(-PAD, PAD + 1, PAD)):
                     for db in ti.static(range(-PAD, PAD + 1, PAD)):
                         a = ti.min(ti.max(i - PAD + da, 0), rows - 1) // TILE
@@ -539,7 +530,10 @@ class _Kernels:
         def prepare_lowering(stamps: Stamps, keys: Keys, run: ti.types.vector(2, ti.i32)):
             """After the raise wave: activate for round run[1] every tile active since round run[0] (active before
             it, or reached by it), keys unknown (inf); deactivate the rest."""
-            for g, a, b in stamps:
+            ti.loop_config(serialize=True)  # one store per tile: cheaper than waking the threads
+            for t in range(stamps.shape[0] * stamps.shape[1] * stamps.shape[2]):
+                g, a, b = t // (stamps.shape[1] * stamps.shape[2]), t // stamps.shape[2] % stamps.shape[1], \
+                    t % stamps.shape[2]
                 stamps[g, a, b] = ti.select(stamps[g, a, b] >= run[0], run[1], -1)
                 keys[g, a, b] = ti.math.inf
 
@@ -548,12 +542,14 @@ class _Kernels:
             """Copy into ``dst`` the cells of the tiles stamped for ``tick`` or later (the only ones settling can
             have changed since round ``tick``), so that both buffers hold the same values."""
             rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-            for g, ta, tb in stamps:
-                if stamps[g, ta, tb] >= tick:
-                    for u, v in ti.ndrange(TILE, TILE):
-                        r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
-                        if r < rows + PAD and c < cols + PAD:
-                            dst[g, r, c] = src[g, r, c]
+            for row in range(stamps.shape[0] * stamps.shape[1]):  # a row of tiles per thread: a struct-for divides per tile
+                g, ta = row // stamps.shape[1], row % stamps.shape[1]
+                for tb in range(stamps.shape[2]):
+                    if stamps[g, ta, tb] >= tick:
+                        for u, v in ti.ndrange(TILE, TILE):
+                            r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
+                            if r < rows + PAD and c < cols + PAD:
+                                dst[g, r, c] = src[g, r, c]
 
         @kernel
         def gather_penalties(pen: Values, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
@@ -735,8 +731,12 @@ class _Layers:
         it)."""
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
-        self.kernels.reset(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
-                           header=self.header, cap=self.cap, tick=self.tick)
+        for values in (self.src, self.dst):
+            values.fill(self.cap)
+        self.stamps.fill(-1)
+        self.keys.fill(math.inf)
+        self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
+                          tick=self.tick)
         self.woken = self.tick
 
     def _waves(self, count: int, serially, in_parallel) -> tuple[int, bool]:
