@@ -23,8 +23,8 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 |---|---|---|
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds of the raise wave, then of settling in place | ``settle_serially`` / ``settle`` | the same rule |
-| converge: the raise wave's tiles handed to lowering; both buffers equal after | ``prepare_lowering``, ``mirror`` | each converge |
+| converge: rounds of raise wave, then settling | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
+| converge: hand the raise wave's tiles to lowering; equal buffers | ``prepare_lowering``, ``mirror`` | each converge |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
@@ -57,6 +57,10 @@ PAD = stencil.REACH
 #: launch; beyond, each iteration is a parallel launch. Measured on the 2-core VM: waking the worker threads costs
 #: about 55 µs a launch, and one thread relaxes a dense layer of up to about 1000 tiles as fast as two.
 SERIAL_TILES = 512
+#: The same for converge()'s rounds on a scalar layer (the goal's): its tiles are light, and a parallel round was no
+#: faster than one thread on the 2-core VM (random 1024², 20 % obstacles, from scratch: 155-189 ms on one thread
+#: against 194-246 ms with parallel rounds beyond 512 tiles; 256²: 12-18 against 17-24 ms).
+SERIAL_SETTLE_TILES = 16384
 #: Width, in cells of distance, of the buckets in which converge() settles tiles: a round settles the active tiles
 #: whose key (the smallest value that woke them) is within SETTLE_BAND of the lowest key (measured, RESULTS §2).
 SETTLE_BAND = 256.0
@@ -100,10 +104,10 @@ def init_taichi() -> None:
     _on_cpu = arch == ti.cpu
 
 
-def _serial_limit() -> int:
-    """SERIAL_TILES on the CPU; on a GPU one thread is far slower than a launch, so every busy iteration is
-    parallel there."""
-    return SERIAL_TILES if _on_cpu else 0
+def _serial_limit(tiles: int) -> int:
+    """``tiles`` (SERIAL_TILES or SERIAL_SETTLE_TILES) on the CPU; on a GPU one thread is far slower than a launch,
+    so every busy iteration is parallel there."""
+    return tiles if _on_cpu else 0
 
 
 # ------------------------------------------------------------------------------------- kernels, one set per spec
@@ -328,8 +332,8 @@ def _tile_rules(cell: dict) -> dict:
         """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its key at
         most ``bound``, or inf: due at once); an active tile not yet due is deferred to the next round. A due tile
         sweeps its cells until they stop changing (in cache), each pass in the next of the four diagonal directions
-        starting from the round's, ``sweep`` (``_oriented``), and wakes the neighbouring tiles that its changed border cells
-        reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
+        starting from the round's, ``sweep`` (``_oriented``), and wakes the neighbouring tiles that its changed
+        border cells reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
 
         Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
         source and a cell's relaxation never raises it (the caller guarantees that no cell is above its
@@ -542,7 +546,7 @@ class _Kernels:
             """Copy into ``dst`` the cells of the tiles stamped for ``tick`` or later (the only ones settling can
             have changed since round ``tick``), so that both buffers hold the same values."""
             rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-            for row in range(stamps.shape[0] * stamps.shape[1]):  # a row of tiles per thread: a struct-for divides per tile
+            for row in range(stamps.shape[0] * stamps.shape[1]):  # a row of tiles per thread (a struct-for: per tile)
                 g, ta = row // stamps.shape[1], row % stamps.shape[1]
                 for tb in range(stamps.shape[2]):
                     if stamps[g, ta, tb] >= tick:
@@ -739,14 +743,15 @@ class _Layers:
                           tick=self.tick)
         self.woken = self.tick
 
-    def _waves(self, count: int, serially, in_parallel) -> tuple[int, bool]:
+    def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
         """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
-        rounds). While at most ``_serial_limit()`` tiles are active they run one after another in one launch on the
-        calling thread, ``serially(first, count, limit) -> (done, finished)``; a busier wave gets a parallel launch
-        of its own, ``in_parallel(first) -> finished``. Stops early once finished; returns (done, finished)."""
+        rounds). While at most ``_serial_limit(serial_tiles)`` tiles are active they run one after another in one
+        launch on the calling thread, ``serially(first, count, limit) -> (done, finished)``; a busier wave gets a
+        parallel launch of its own, ``in_parallel(first) -> finished``. Stops early once finished; returns (done,
+        finished)."""
         done, finished = 0, False
         while done < count and not finished:
-            ran, finished = serially(done, count - done, _serial_limit())
+            ran, finished = serially(done, count - done, _serial_limit(serial_tiles))
             done += ran
             if done < count and not finished:
                 finished = in_parallel(done)
@@ -767,7 +772,7 @@ class _Layers:
             self._count_iterations(1)
             return False
 
-        self._waves(k, serially, in_parallel)
+        self._waves(k, SERIAL_TILES, serially, in_parallel)
 
     def _relaxing(self) -> dict:
         """The arrays and cap an iteration reads and writes."""
@@ -817,7 +822,7 @@ class _Layers:
             self.tick += 1
             return pending == 0
 
-        return self._waves(limit, serially, in_parallel)
+        return self._waves(limit, SERIAL_TILES if self.lanes else SERIAL_SETTLE_TILES, serially, in_parallel)
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
