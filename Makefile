@@ -27,6 +27,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.budget
 	$(PY) -m benchmarks.sweep
 	$(PY) -m benchmarks.predict
+	$(PY) -m benchmarks.warehouse
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick

@@ -1,0 +1,137 @@
+"""The navigator on a real ROS map: setup and tick times on nav2's warehouse (1674 x 1006 cells) with moving boxes.
+
+    python -m benchmarks.warehouse [--quick]
+
+nav2's warehouse map (benchmarks/data/nav2_maps, inflated by 0.2 m) with boxes shuttling over free ground
+(:func:`tdp.random_worlds.boxes_on_map`), start and goal random cells of the largest free region, one world per
+seed. Per world, accelerating nodes (25, the default) and plain DP at K = 4, and accelerating nodes with a time
+budget of 1 ms per tick instead of a fixed K:
+
+* setup: ``Navigator(...)`` (node placement, windows) plus ``setup()`` (every layer converged), warm: a first
+  navigator of the same kind compiled every kernel in this process;
+* tick: the planner's time per tick (DP iterations, monitor, search; handing over the map's changes is reported
+  apart), median, 95th percentile and maximum over the run's ticks (TICKS at most; fewer when the robot arrives);
+* side by side, what recomputing instead of iterating would cost: a from-scratch ``converge()`` of the goal field
+  on the same map, and scipy's Dijkstra solve on the 16-neighbour graph.
+
+--quick: nav2's depot map (307 x 604), one world, 30 ticks.
+"""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.sparse.csgraph import dijkstra
+
+import tdp
+from benchmarks.common import median_time, print_table, quick_parser, save_results
+from benchmarks.convergence import largest_free_region
+from benchmarks.reference_graph import grid_graph
+from tdp.contract import timing_summary
+from tdp.random_worlds import boxes_on_map
+from tdp.simulate import run_planner, start_grid
+
+NAV2 = Path(__file__).resolve().parent / "data" / "nav2_maps"
+ROBOT_RADIUS_M = 0.2
+SEEDS, TICKS, BOXES = [0, 1, 2], 300, 6
+PLANNERS = [("accelerating", {}), ("plain DP", {"accelerating": False}),
+            ("accelerating, 1 ms budget", {"budget_ms": 1.0})]
+
+
+def worlds(quick: bool) -> list[tdp.Scenario]:
+    """Boxes on the inflated map, one world per seed, start and goal in its largest free region."""
+    grid = tdp.load_map(NAV2 / ("depot.yaml" if quick else "warehouse.yaml"))
+    grid = grid.inflate(ROBOT_RADIUS_M / grid.resolution)
+    free = largest_free_region(grid.occupied)
+    scenarios = []
+    for seed in SEEDS[:1] if quick else SEEDS:
+        start, goal = (tuple(int(v) for v in free[k]) for k in np.random.default_rng(seed).choice(len(free), 2))
+        scenarios.append(boxes_on_map(grid, start, goal, boxes=2 if quick else BOXES, seed=seed))
+    return scenarios
+
+
+def navigator(scenario: tdp.Scenario, config: tdp.NavigatorConfig) -> tdp.Navigator:
+    return tdp.Navigator(start_grid(scenario), scenario.start, scenario.goal, config)
+
+
+def run(scenario: tdp.Scenario, options: dict, ticks: int) -> dict:
+    """Setup and tick times of one planner on one world (its kernels already compiled)."""
+    config = tdp.NavigatorConfig(**options)
+    began = time.perf_counter()
+    planner = navigator(scenario, config)
+    built = time.perf_counter()
+    rounds = planner.setup()
+    done = time.perf_counter()
+    record = run_planner(scenario, planner, config, ticks)
+    results = record["results"]
+    tick = timing_summary([sum(v for k, v in r.timings.items() if k != "update") for r in results])
+    update = timing_summary([r.timings["update"] for r in results])
+    return {"construct_ms": (built - began) * 1e3, "converge_ms": (done - built) * 1e3,
+            "setup_ms": (done - began) * 1e3, "rounds": rounds, "nodes": len(planner.nodes), "ticks": record["ticks"],
+            "tick_median_ms": tick["median"], "tick_p95_ms": tick["p95"], "tick_max_ms": tick["max"],
+            "update_median_ms": update["median"], "collisions": record["collisions"], "hits": record["hits"]}
+
+
+def recompute_ms(scenario: tdp.Scenario) -> dict:
+    """A from-scratch converge() of the goal field and scipy's Dijkstra solve on the world's first map."""
+    occupied = scenario.occupancy(0)
+    field = tdp.DistanceField(tdp.GridMap(occupied), scenario.goal)
+
+    def from_scratch():
+        field.reset()
+        field.converge()
+
+    graph = grid_graph(occupied).T.tocsr()
+    source = scenario.goal[0] * occupied.shape[1] + scenario.goal[1]
+    return {"recompute_ms": median_time(from_scratch, 3) * 1e3,
+            "dijkstra_ms": median_time(lambda: dijkstra(graph, indices=source), 3) * 1e3}
+
+
+def figure(rows: list[dict], path: Path) -> None:
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(10, 4.5))
+    labels = [f"{r['world']}\n{r['planner'].replace(', ', chr(10))}" for r in rows]
+    x = np.arange(len(rows))
+    for k, (key, name) in enumerate([("tick_median_ms", "tick median"), ("tick_p95_ms", "tick p95"),
+                                     ("tick_max_ms", "tick max"), ("recompute_ms", "goal field from scratch")]):
+        ax.bar(x + (k - 1.5) * 0.2, [r[key] for r in rows], 0.2, label=name)
+    ax.axhline(1.0, color="k", lw=0.8, ls="--")
+    ax.axhline(20.0, color="k", lw=0.8, ls=":")
+    ax.set_title("nav2 warehouse, 6 moving boxes: planner time per tick (lines: the 1 ms median and 20 ms max "
+                 "targets)", fontsize=9)
+    ax.set_xticks(x, labels, fontsize=6)
+    ax.set_yscale("log")
+    ax.set_ylabel("ms")
+    ax.legend(fontsize=7)
+    save_figure(fig, path)
+
+
+def main() -> None:
+    args = quick_parser(__doc__).parse_args()
+    ticks = 30 if args.quick else TICKS
+    scenarios = worlds(args.quick)
+    for _, options in PLANNERS:  # compile every kernel of both kinds (excluded from every timing)
+        navigator(scenarios[0], tdp.NavigatorConfig(**options)).setup()
+    rows = []
+    for scenario in scenarios:
+        reference = recompute_ms(scenario)
+        for name, options in PLANNERS:
+            rows.append({"world": scenario.name, "planner": name, **run(scenario, options, ticks), **reference})
+            r = rows[-1]
+            print(f"  {scenario.name}, {name}: setup {r['setup_ms']:.0f} ms, tick median {r['tick_median_ms']:.2f} "
+                  f"ms, max {r['tick_max_ms']:.1f} ms (goal field from scratch {r['recompute_ms']:.0f} ms)",
+                  flush=True)
+    print_table(["world", "planner", "nodes", "setup ms", "of which converge", "ticks", "tick median ms", "tick p95 ms",
+                 "tick max ms", "map hand-over ms", "from scratch ms", "Dijkstra ms", "coll."],
+                [[r["world"], r["planner"], str(r["nodes"]), f"{r['setup_ms']:.0f}", f"{r['converge_ms']:.0f}",
+                  str(r["ticks"]), f"{r['tick_median_ms']:.2f}", f"{r['tick_p95_ms']:.2f}", f"{r['tick_max_ms']:.1f}",
+                  f"{r['update_median_ms']:.2f}", f"{r['recompute_ms']:.0f}", f"{r['dijkstra_ms']:.0f}",
+                  str(r["collisions"])] for r in rows])
+    save_results("warehouse-quick" if args.quick else "warehouse", {"rows": rows}, lambda png: figure(rows, png))
+
+
+if __name__ == "__main__":
+    main()
