@@ -26,14 +26,12 @@ from scipy.sparse.csgraph import dijkstra
 
 import tdp
 from benchmarks.common import median_time, print_table, quick_parser, save_results
-from benchmarks.convergence import largest_free_region
+from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, largest_free_region
 from benchmarks.reference_graph import grid_graph
 from tdp.contract import timing_summary
 from tdp.random_worlds import boxes_on_map
 from tdp.simulate import run_planner, start_grid
 
-NAV2 = Path(__file__).resolve().parent / "data" / "nav2_maps"
-ROBOT_RADIUS_M = 0.2
 SEEDS, TICKS, BOXES = [0, 1, 2], 300, 6
 PLANNERS = [("accelerating", {}), ("plain DP", {"accelerating": False}),
             ("accelerating, 1 ms budget", {"budget_ms": 1.0})]
