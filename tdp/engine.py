@@ -535,11 +535,10 @@ class _Kernels:
             """After the raise wave: activate for round run[1] every tile active since round run[0] (active before
             it, or reached by it), keys unknown (inf); deactivate the rest."""
             ti.loop_config(serialize=True)  # one store per tile: cheaper than waking the threads
-            for t in range(stamps.shape[0] * stamps.shape[1] * stamps.shape[2]):
-                g, a, b = t // (stamps.shape[1] * stamps.shape[2]), t // stamps.shape[2] % stamps.shape[1], \
-                    t % stamps.shape[2]
-                stamps[g, a, b] = ti.select(stamps[g, a, b] >= run[0], run[1], -1)
-                keys[g, a, b] = ti.math.inf
+            for g in range(stamps.shape[0]):
+                for a, b in ti.ndrange(stamps.shape[1], stamps.shape[2]):
+                    stamps[g, a, b] = ti.select(stamps[g, a, b] >= run[0], run[1], -1)
+                    keys[g, a, b] = ti.math.inf
 
         @kernel
         def mirror(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
