@@ -443,10 +443,21 @@ class Navigator:
     def _real_goal_route(self, max_steps: int) -> list[tuple[int, int]] | None:
         """The goal layer's successors from R when they reach G within ``max_steps`` moves through no predicted
         cell - a real route on the map as it is, not about to close - else None."""
-        chain = [self.robot] + self.engine.trace(0, self.robot, max_steps)
-        if chain[-1] != self.goal or self._predicted[tuple(np.array(chain).T)].any():
+        return self._real_chain(self.robot, len(self.nodes) + 1, max_steps)
+
+    def _real_chain(self, start: tuple[int, int], vertex: int, max_steps: int) -> list[tuple[int, int]] | None:
+        """The successors of graph vertex ``vertex``'s layer from ``start`` when they reach its cell within
+        ``max_steps`` moves through no predicted cell, ``start`` first; else None."""
+        chain = [start] + self.engine.trace(self._layer_of(vertex), start, max_steps)
+        if chain[-1] != self._vertex_cell(vertex) or self._predicted[tuple(np.array(chain).T)].any():
             return None
         return chain
+
+    def _driven_length(self, a: int, b: int) -> float:
+        """The length (cells) of the way from graph vertex ``a`` to ``b`` that b's layer really drives: its
+        successors from a's cell, if they reach b within DmaxQ; else inf."""
+        chain = self._real_chain(self._vertex_cell(a), b, math.ceil(self.dmax_q) + 1)
+        return math.inf if chain is None else _length(chain)
 
     def _backup_cost_from_robot(self) -> float:
         """The backup's estimated cost from R: the subgoal's layer at R plus the rest of the last path (inf when the
@@ -459,7 +470,7 @@ class Navigator:
         """Uniform-cost search R -> G; on success follow the subgoal (ARCHITECTURE §5.5), else follow the goal
         layer and search again next tick."""
         graph = self._graph(without_blocked=True)
-        found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)
+        found = self._driven_search(graph)
         if found is None:
             self.state, self._subgoal = "no-route", None
             return
@@ -469,12 +480,31 @@ class Navigator:
         result.backup_path, result.backup_cost = path, cost
         self.state = "backup"
         self._subgoal = choose_subgoal(path, graph)
+        if self._subgoal not in path[:2] and math.isinf(self._driven_length(graph.robot_id, self._subgoal)):
+            self._subgoal = path[1]  # Q2's own layer does not drive R there yet: head for Q1, which it does
         self._backup_path = path
         remaining = 0.0
         self._cost_to_goal = {path[-1]: 0.0}
         for a, b in zip(path[-2::-1], path[:0:-1]):
             remaining += graph.weight(a, b)
             self._cost_to_goal[a] = remaining
+
+    def _driven_search(self, graph: NodeGraph) -> tuple[list[int], float] | None:
+        """Uniform-cost search R -> G over edges the layers really drive (lazily, ARCHITECTURE §5.5): each edge
+        of a found path is traced once along its target's layer and reweighted by the length of that chain, or
+        dropped where the chain does not reach (the layer is still stale after a cut); search again until every
+        edge of the path has been driven. Returns (path, cost) or None."""
+        driven: set[tuple[int, int]] = set()
+        while True:
+            found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)
+            if found is None:
+                return None
+            legs = [(a, b) for a, b in zip(found[0], found[0][1:]) if (a, b) not in driven]
+            if not legs:
+                return found
+            for a, b in legs:
+                driven.add((a, b))
+                graph.reweight(a, b, max(graph.weight(a, b), self._driven_length(a, b)))
 
     def _layer_at_robot(self, vertex: int, graph: NodeGraph | None = None) -> float:
         """The value at R of the layer of graph vertex ``vertex`` (a node, or G for the goal layer)."""
@@ -488,9 +518,18 @@ class Navigator:
         return self.engine.trace(self._followed_layer(), self.robot, steps)
 
     def _followed_layer(self) -> int:
-        """The layer the robot follows: 1 + the subgoal's node in backup mode, else 0 (the goal layer)."""
-        return 1 + self._subgoal if self.state == "backup" and self._subgoal < len(self.nodes) else 0
+        """The layer the robot follows: the subgoal's in backup mode, else 0 (the goal layer)."""
+        return self._layer_of(self._subgoal) if self.state == "backup" else 0
+
+    def _layer_of(self, vertex: int) -> int:
+        """The engine layer of graph vertex ``vertex``: 1 + j for node j, 0 (the goal layer) for G."""
+        return 1 + vertex if vertex < len(self.nodes) else 0
 
     def _next_cell(self) -> tuple[int, int] | None:
         step = self.route(1)
         return step[0] if step else None
+
+
+def _length(chain: list[tuple[int, int]]) -> float:
+    """Length (cells) of a chain of cells, each move counted by its Euclidean length."""
+    return float(np.hypot(*np.diff(np.array(chain), axis=0).T).sum())

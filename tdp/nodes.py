@@ -159,6 +159,18 @@ class NodeGraph:
         value = float(self._weights(a)[b])
         return value if value < self.dmax_q else np.inf
 
+    def reweight(self, a: int, b: int, weight: float) -> None:
+        """Set the weight of edge a-b (vertex ids, either order); inf, or DmaxQ and over, drops the edge."""
+        r, g = self.robot_id, self.goal_id
+        if {a, b} == {r, g}:
+            self.robot_goal = weight
+        elif r in (a, b):
+            self.robot[a + b - r] = weight
+        elif g in (a, b):
+            self.goal[a + b - g] = weight
+        else:
+            self.pairs[a, b] = self.pairs[b, a] = weight
+
     def edges(self) -> list[tuple[int, int, float]]:
         """Every node-node edge (a < b, weight) of the current graph."""
         a, b = np.nonzero(np.triu(self.pairs < self.dmax_q, k=1))

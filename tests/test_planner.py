@@ -13,6 +13,8 @@ from tdp.nodes import NodeGraph, choose_subgoal, place_nodes
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 
+from reference import distances_to
+
 DEFAULT = tdp.NavigatorConfig()
 
 
@@ -210,6 +212,21 @@ def test_uniform_cost_search_agrees_with_brute_force(n, seed, density):
         assert sum(weights[a, b] for a, b in zip(path, path[1:])) == pytest.approx(cost)
 
 
+def test_reweight_sets_an_edge_both_ways_and_drops_it_at_dmaxq():
+    samples = np.array([[5.0, 0.0, 3.0], [4.0, 3.0, 0.0], [9.0, 2.0, 6.0], [0.0, 7.0, 5.0]])  # Q0, Q1, R, G
+    graph = NodeGraph(samples, dmax_q=8.0, active=np.ones(2, bool))
+    r, g = graph.robot_id, graph.goal_id
+    assert graph.weight(0, 1) == 3.0 and graph.weight(r, 0) == 2.0 and graph.weight(1, g) == 5.0
+    graph.reweight(1, 0, 4.5)
+    graph.reweight(0, r, 7.0)
+    graph.reweight(g, 1, np.inf)
+    graph.reweight(r, g, 8.0)
+    assert graph.weight(0, 1) == graph.weight(1, 0) == 4.5
+    assert graph.weight(r, 0) == graph.weight(0, r) == 7.0
+    assert math.isinf(graph.weight(1, g)) and math.isinf(graph.weight(r, g))
+    assert sorted(graph.neighbours(g)) == [(0, 7.0)]
+
+
 def test_lattice_placement_rules():
     occupied = np.zeros((40, 40), bool)
     occupied[9:12, 9:12] = True
@@ -256,6 +273,40 @@ def test_evidence_leaves_the_backup_once_the_goal_layer_knows_a_route_at_least_a
     evidence = tdp.simulate(scenario, tdp.NavigatorConfig(switch_back="evidence"))
     assert 0 < evidence.modes.count("backup") < paper.modes.count("backup")
     assert evidence.ratio <= paper.ratio + 0.005
+
+
+@pytest.mark.parametrize("seed, k", [(105, 4), (129, 1), (119, 1)])
+def test_every_backup_edge_is_a_real_connection_on_the_map_of_its_tick(seed, k):
+    """Rooms whose doors close on the route: each edge of every backup path joins two vertices whose exact distance
+    on that tick's map (scipy's Dijkstra) is under DmaxQ. Layers still read the old distance through a closed door
+    for a while; the first backups of these worlds used to head for the node in front of it."""
+    scenario = make_world("rooms", 100, seed)
+    config = tdp.NavigatorConfig(updates_per_move=k)
+    dmax_q = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config).dmax_q
+    episode = tdp.simulate(scenario, config)
+    assert episode.reached and episode.backups
+    exact = {}
+    for backup in episode.backups:
+        tick, path = backup["tick"], backup["path"]
+        cells = episode.nodes + [episode.trajectory[tick - 1], scenario.goal]
+        for a, b in zip(path, path[1:]):
+            if (tick, b) not in exact:
+                exact[tick, b] = distances_to(scenario.occupancy(tick), cells[b])
+            assert exact[tick, b][cells[a]] < dmax_q, (tick, path, a, b)
+
+
+def test_a_door_closing_on_the_robot_does_not_trap_it():
+    """A box that appears on the robot and stands still is a hit, and the robot drives off it; a moving box holds
+    the robot while it moves."""
+    grid = tdp.GridMap(np.zeros((20, 20), bool))
+    door = tdp.Obstacle(box=(9, 3, 12, 6), appear_at=4)
+    scenario = tdp.Scenario(grid, (10, 0), (10, 19), obstacles=[door], name="door-on-robot")
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4), max_ticks=80)
+    assert episode.trajectory[3] == (10, 3) and episode.hits >= 1
+    assert episode.reached and episode.collisions == 0
+    assert not scenario.holds(4, (10, 3)) and not scenario.holds(40, (10, 3))
+    sliding = tdp.Scenario(grid, (0, 0), (19, 19), obstacles=[tdp.Obstacle(box=(9, 3, 12, 6), waypoints=[(9, 12)])])
+    assert sliding.holds(2, (10, 5)) and not sliding.holds(40, (10, 13))
 
 
 @pytest.mark.parametrize("kwargs, message", [
