@@ -112,7 +112,7 @@ def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, m
         result = planner.tick()
         result.timings["update"] = update_s
         wanted = result.next_cell
-        if wanted is not None and not occupied[robot]:
+        if wanted is not None and not (occupied[robot] and scenario.holds(tick, robot)):
             if _legal(table, occupied, robot, wanted):
                 record["length"] += math.dist(robot, wanted)
                 robot = wanted

@@ -143,6 +143,18 @@ class Scenario:
                 occupied[max(0, r0):max(0, min(rows, r1)), max(0, c0):max(0, min(cols, c1))] = True
         return occupied
 
+    def holds(self, tick: int, cell: tuple[int, int]) -> bool:
+        """Whether a box covering ``cell`` at ``tick`` is moving (its corner moved since the tick before): a box
+        that drives onto the robot holds it while it moves on; one standing still (a door that closed, a box that
+        parked) does not, and the robot may drive off it."""
+        r, c = cell
+        for obstacle in self.obstacles:
+            if obstacle.present(tick):
+                r0, c0, r1, c1 = obstacle.footprint(tick)
+                if r0 <= r < r1 and c0 <= c < c1 and obstacle.corner(tick) != obstacle.corner(tick - 1):
+                    return True
+        return False
+
     def target(self, tick: int) -> tuple[int, int]:
         """The target's cell at ``tick``."""
         points = [tuple(map(float, self.goal))] + [tuple(map(float, w)) for w in self.target_waypoints]
