@@ -61,27 +61,3 @@ def segment_near_path(a: np.ndarray, b: np.ndarray, path: np.ndarray, reach: flo
     t = np.zeros(len(path)) if length2 == 0 else np.clip((path - a) @ ab / length2, 0.0, 1.0)
     nearest = a + t[:, None] * ab
     return bool((np.hypot(*(path - nearest).T) <= reach).any())
-
-
-def _orientation(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """Sign of the turn p -> q -> r (arrays of points broadcast together)."""
-    cross = (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0])
-    return np.sign(cross)
-
-
-def crossing_blocked(nodes: np.ndarray, blocked: np.ndarray) -> np.ndarray:
-    """bool (n x n): node pairs whose segment properly crosses the segment of a blocked pair.
-
-    A blocked pair says the region between its nodes was cut; a pair whose straight segment crosses it most likely
-    went through the same region, so its weight is as stale as the blocked pair's was.
-    """
-    n = len(nodes)
-    a, b = np.nonzero(np.triu(blocked, k=1))
-    if not len(a):
-        return np.zeros((n, n), bool)
-    p = nodes[:, None, None, :].astype(float)   # pair (i, j): from node i ...
-    q = nodes[None, :, None, :].astype(float)   # ... to node j
-    r, s = nodes[a][None, None].astype(float), nodes[b][None, None].astype(float)  # each blocked segment
-    proper = ((_orientation(p, q, r) * _orientation(p, q, s) < 0) &
-              (_orientation(r, s, p) * _orientation(r, s, q) < 0))
-    return proper.any(axis=2)

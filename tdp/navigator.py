@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from . import checks
-from .blockage import BlockageMonitor, crossing_blocked, segment_near_path
+from .blockage import BlockageMonitor, segment_near_path
 from .contract import Detection, Mode, TickResult
 from .engine import Engine
 from .field import cells_from, check_cap
@@ -21,7 +21,7 @@ from .grid import GridMap
 from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, place_nodes
 from .predict import MotionPredictor
 from .search import uniform_cost_search
-from .stencil import check_neighbourhood, legal_moves, moves
+from .stencil import check_neighbourhood, escape_move, legal_moves, moves
 
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
@@ -234,6 +234,8 @@ class Navigator:
         if result.next_cell is None and self.state == "backup":
             self.state, self._subgoal = "no-route", None  # no node layer offers a move: the goal layer's
             result.next_cell = self._next_cell()
+        if result.next_cell is None and self.engine.occupied[self.robot]:
+            result.next_cell = self._escape()
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
         result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
@@ -288,6 +290,16 @@ class Navigator:
         values = self.engine.sample([cell for cell, _ in options])[:, self._followed_layer()]
         best = max(range(len(options)), key=lambda i: (options[i][0] not in arrivals, -(values[i] + options[i][1])))
         return options[best][0]
+
+    def _escape(self) -> tuple[int, int] | None:
+        """The robot's cell is occupied (a door closed on it, a box parked over it) and no layer offers a move: the
+        first move of the shortest way out towards the goal (:func:`~tdp.stencil.escape_move`)."""
+        def goal_distances(cells):
+            values = self.engine.sample(cells)[:, 0].astype(np.float64)
+            return np.where(values >= self.config.d_max, np.inf, values)
+
+        allowed = moves(self.config.neighbourhood, self.config.corner_cutting)
+        return escape_move(self.engine.occupied, self.robot, allowed, goal_distances)
 
     def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
         """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""
@@ -346,15 +358,14 @@ class Navigator:
         return self._active_from <= (self.engine.iterations if iteration is None else iteration)
 
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
-        """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked and the pairs
-        whose segments cross them, and with the direct R-G edge only where the goal layer's successors really reach
-        G (while news of a cut travels, its value at R can be under DmaxQ and stale)."""
+        """The node graph of eq. 14 now; for a search, without the pairs the monitor holds blocked, and with the
+        direct R-G edge only where the goal layer's successors really reach G (while news of a cut travels, its
+        value at R can be under DmaxQ and stale)."""
         if self._readings is None or self._readings[0] != self._reading_state():
             self._readings = (self._reading_state(), self.engine.sample(self._graph_cells()))
         unreliable, direct = None, True
         if without_blocked:
-            if self.monitor.blocked is not None:
-                unreliable = self.monitor.blocked | crossing_blocked(self.nodes, self.monitor.blocked)
+            unreliable = self.monitor.blocked
             direct = self._real_goal_route(math.ceil(self.dmax_q) + 1) is not None
         return NodeGraph(self._readings[1], self.dmax_q, self._active_nodes(), unreliable, direct)
 

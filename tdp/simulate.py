@@ -13,7 +13,7 @@ from .field import DistanceField
 from .grid import GridMap
 from .contract import Mode, Planner, TickResult, WorldFeed, detection_records, landmarks, timing_summary
 from .navigator import Navigator, NavigatorConfig
-from .stencil import moves
+from .stencil import escape_move, moves
 from .world import Scenario, box_distance
 
 
@@ -54,6 +54,7 @@ class Oracle:
 
     def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
         self.field = DistanceField(grid, goal, config.neighbourhood, config.corner_cutting, config.d_max)
+        self.moves = moves(config.neighbourhood, config.corner_cutting)
         self.robot = start
 
     def update_map(self, cells, occupied) -> None:
@@ -69,9 +70,17 @@ class Oracle:
     def tick(self) -> TickResult:
         began = time.perf_counter()
         self.field.converge()
-        result = TickResult(mode=Mode.ORACLE, next_cell=self.field.successor(self.robot))
+        step = self.field.successor(self.robot)
+        if step is None and self.field.occupied[self.robot]:
+            step = escape_move(self.field.occupied, self.robot, self.moves, self._goal_distances)
+        result = TickResult(mode=Mode.ORACLE, next_cell=step)
         result.timings = {"converge": time.perf_counter() - began}
         return result
+
+
+    def _goal_distances(self, cells: list) -> np.ndarray:
+        values = np.array([self.field.distance(cell) for cell in cells])
+        return np.where(values >= self.field.d_max, np.inf, values)
 
 
 def _allowed_moves(config: NavigatorConfig) -> dict:
@@ -113,7 +122,7 @@ def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, m
         result.timings["update"] = update_s
         wanted = result.next_cell
         if wanted is not None and not (occupied[robot] and scenario.holds(tick, robot)):
-            if _legal(table, occupied, robot, wanted):
+            if _legal(table, occupied & ~scenario.parked_over(tick, robot), robot, wanted):
                 record["length"] += math.dist(robot, wanted)
                 robot = wanted
             else:

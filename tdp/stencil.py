@@ -7,8 +7,9 @@ through besides V and Z; with the default rule (no corner cutting) they must be 
 """
 from __future__ import annotations
 
+import heapq
 import math
-from typing import NamedTuple
+from typing import Callable, NamedTuple
 
 import numpy as np
 
@@ -20,6 +21,9 @@ _KNIGHT = ((-1, 2), (1, 2), (2, 1), (2, -1), (1, -2), (-1, -2), (-2, -1), (-2, 1
 
 #: Largest |dr| or |dc| of any move: the padding, in cells, that the engine keeps around each array.
 REACH = 2
+
+#: Longest way out (cells) :func:`escape_move` looks for when an obstacle covers the robot.
+ESCAPE_CELLS = 16.0
 
 
 class Move(NamedTuple):
@@ -75,3 +79,36 @@ def legal_moves(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
         if all(0 <= i < rows and 0 <= j < cols and not occupied[i, j]
                for i, j in [(r + m.dr, c + m.dc)] + [(r + dr, c + dc) for dr, dc in m.crossed]):
             yield (r + m.dr, c + m.dc), m.cost
+
+
+def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...],
+                distances_at: Callable[[list], np.ndarray], max_length: float = ESCAPE_CELLS) -> tuple[int, int] | None:
+    """The first move out of an obstacle that covers ``cell`` (a door closed on the robot, a box parked over it):
+    the shortest walk of ``allowed`` moves through occupied cells (crossings ignored: the robot is inside already),
+    at most ``max_length`` cells long, to the free cell that minimises walk length + its distance to the goal
+    (``distances_at(cells)``, inf where the goal cannot be reached). None when no such cell has a finite distance."""
+    rows, cols = occupied.shape
+    reached = {cell: 0.0}
+    heap = [(0.0, cell, cell)]
+    exits: dict[tuple[int, int], tuple[float, tuple[int, int]]] = {}
+    while heap:
+        length, here, first = heapq.heappop(heap)
+        if length > reached[here]:
+            continue
+        for m in allowed:
+            there, walked = (here[0] + m.dr, here[1] + m.dc), length + m.cost
+            if not (0 <= there[0] < rows and 0 <= there[1] < cols) or walked > max_length:
+                continue
+            step = there if here == cell else first
+            if not occupied[there]:
+                if walked < exits.get(there, (math.inf,))[0]:
+                    exits[there] = (walked, step)
+            elif walked < reached.get(there, math.inf):
+                reached[there] = walked
+                heapq.heappush(heap, (walked, there, step))
+    if not exits:
+        return None
+    cells = list(exits)
+    totals = [exits[c][0] + float(d) for c, d in zip(cells, distances_at(cells))]
+    best = int(np.argmin(totals))
+    return exits[cells[best]][1] if math.isfinite(totals[best]) else None

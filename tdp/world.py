@@ -147,13 +147,25 @@ class Scenario:
         """Whether a box covering ``cell`` at ``tick`` is moving (its corner moved since the tick before): a box
         that drives onto the robot holds it while it moves on; one standing still (a door that closed, a box that
         parked) does not, and the robot may drive off it."""
+        return any(moving for _, moving in self._covering(tick, cell))
+
+    def parked_over(self, tick: int, cell: tuple[int, int]) -> np.ndarray:
+        """bool (H, W): the cells of the boxes that cover ``cell`` at ``tick`` and stand still (see :meth:`holds`),
+        less the static map's obstacles - a robot under such a box may drive through them to get out."""
+        mask = np.zeros(self.grid.shape, bool)
+        for (r0, c0, r1, c1), moving in self._covering(tick, cell):
+            if not moving:
+                mask[max(0, r0):max(0, r1), max(0, c0):max(0, c1)] = True
+        return mask & ~self.grid.occupied
+
+    def _covering(self, tick: int, cell: tuple[int, int]):
+        """(footprint, moving) of each box present at ``tick`` that covers ``cell``."""
         r, c = cell
         for obstacle in self.obstacles:
             if obstacle.present(tick):
                 r0, c0, r1, c1 = obstacle.footprint(tick)
-                if r0 <= r < r1 and c0 <= c < c1 and obstacle.corner(tick) != obstacle.corner(tick - 1):
-                    return True
-        return False
+                if r0 <= r < r1 and c0 <= c < c1:
+                    yield (r0, c0, r1, c1), obstacle.corner(tick) != obstacle.corner(tick - 1)
 
     def target(self, tick: int) -> tuple[int, int]:
         """The target's cell at ``tick``."""

@@ -8,10 +8,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import tdp
-from tdp.blockage import BlockageMonitor, crossing_blocked, segment_near_path
+from tdp.blockage import BlockageMonitor, segment_near_path
 from tdp.nodes import NodeGraph, choose_subgoal, place_nodes
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
+from tdp.stencil import escape_move
 
 from reference import distances_to
 
@@ -178,12 +179,6 @@ def test_monitor_ignores_inactive_nodes():
 def test_segment_geometry():
     assert segment_near_path((0, 0), (0, 10), np.array([[3, 5]]), 3.0)
     assert not segment_near_path((0, 0), (0, 10), np.array([[3, 5], [0, 14]]), 2.9)
-    nodes = np.array([[0, 5], [10, 5], [5, 0], [5, 10], [0, 0]])
-    blocked = np.zeros((5, 5), bool)
-    blocked[0, 1] = blocked[1, 0] = True
-    crossing = crossing_blocked(nodes, blocked)
-    assert crossing[2, 3] and crossing[3, 2]
-    assert not crossing[0, 4] and not crossing[2, 4]  # sharing an end, or beside it, is no crossing
 
 
 @settings(max_examples=60, deadline=None)
@@ -307,6 +302,35 @@ def test_a_door_closing_on_the_robot_does_not_trap_it():
     assert not scenario.holds(4, (10, 3)) and not scenario.holds(40, (10, 3))
     sliding = tdp.Scenario(grid, (0, 0), (19, 19), obstacles=[tdp.Obstacle(box=(9, 3, 12, 6), waypoints=[(9, 12)])])
     assert sliding.holds(2, (10, 5)) and not sliding.holds(40, (10, 13))
+
+
+@pytest.mark.parametrize("accelerating", [True, False])
+def test_a_thick_door_closing_on_the_robot_in_its_doorway_lets_it_drive_out(accelerating):
+    """A wall four cells thick with a doorway; its door closes while the robot is two cells inside. No stencil move
+    from there reaches a free cell over free cells only: the robot drives out through the door's cells towards
+    the goal (the oracle too), but never through the static wall."""
+    occupied = np.zeros((30, 30), bool)
+    occupied[10:14, :] = True
+    occupied[10:14, 14:17] = False
+    door = tdp.Obstacle(box=(10, 14, 14, 17), appear_at=11)
+    scenario = tdp.Scenario(tdp.GridMap(occupied), (2, 15), (27, 15), obstacles=[door], name="thick-door")
+    config = tdp.NavigatorConfig(nodes=4, accelerating=accelerating)
+    episode = tdp.simulate(scenario, config, max_ticks=120)
+    assert episode.trajectory[10] == (12, 15)  # two rows into the doorway when the door closes
+    assert episode.reached and episode.collisions == 0 and episode.ratio == pytest.approx(1.0)
+    assert all(not occupied[cell] or 14 <= cell[1] < 17 for cell in episode.trajectory)
+    assert scenario.parked_over(11, (12, 15)).sum() == 12 and not scenario.parked_over(11, (5, 5)).any()
+
+
+def test_escape_move_takes_the_shortest_way_out_towards_the_goal():
+    occupied = np.zeros((12, 12), bool)
+    occupied[3:8, :] = True  # a band five rows thick; the robot inside it at row 4
+    allowed = tdp.stencil.moves(16)
+    towards_row = lambda row: lambda cells: np.array([abs(r - row) for r, _ in cells], float)  # noqa: E731
+    assert escape_move(occupied, (4, 5), allowed, towards_row(0)) == (3, 5)  # two straight moves up
+    assert escape_move(occupied, (4, 5), allowed, towards_row(11)) == (5, 5)  # four down: 4 + 3 beats 2 + 9
+    assert escape_move(occupied, (4, 5), allowed, lambda cells: np.full(len(cells), np.inf)) is None
+    assert escape_move(occupied, (4, 5), allowed, towards_row(0), max_length=1.5) is None
 
 
 @pytest.mark.parametrize("kwargs, message", [
