@@ -35,6 +35,8 @@ EVIDENCE_SLACK = 0.1
 SETTLED_CELLS = 0.25
 #: With avoid_boxes, a step aside prefers cells no box is predicted to enter within this many ticks.
 AVOID_TICKS = 2
+#: With avoid_boxes, how many of the robot's next moves are checked against the arrivals of boxes crossing its way.
+MEET_TICKS = 8
 
 
 @dataclass(frozen=True)
@@ -275,12 +277,12 @@ class Navigator:
 
     def _clear_of_boxes(self, wanted: tuple[int, int] | None) -> tuple[int, int] | None:
         """The move to make given the cells the tracked boxes are predicted to enter (ARCHITECTURE §5.7): ``wanted``
-        if no box enters its cell at the next tick; else stay (yield) if none enters the robot's; else step aside to
-        a legal move that no box enters at the next tick - one that none enters within AVOID_TICKS if there is
-        such, the lowest value of the followed layer plus the move's length among them; ``wanted`` when every move
-        is entered at the next tick."""
+        if the robot meets no box on its next MEET_TICKS moves (:meth:`_meets_a_box`); else stay (yield) if none
+        enters the robot's cell at the next tick; else step aside to a legal move that no box enters at the next
+        tick - one that none enters within AVOID_TICKS if there is such, the lowest value of the followed layer plus
+        the move's length among them; ``wanted`` when every move is entered at the next tick."""
         arrivals = self.predictor.arrivals(self._ticks, AVOID_TICKS)
-        if wanted is not None and arrivals.get(wanted, math.inf) > 1:
+        if wanted is not None and not self._meets_a_box(wanted, arrivals):
             return wanted
         if arrivals.get(self.robot, math.inf) > 1:
             return None
@@ -288,8 +290,24 @@ class Navigator:
         if not options:
             return wanted
         values = self.engine.sample([cell for cell, _ in options])[:, self._followed_layer()]
-        best = max(range(len(options)), key=lambda i: (options[i][0] not in arrivals, -(values[i] + options[i][1])))
+        clear = [arrivals.get(cell, math.inf) > AVOID_TICKS for cell, _ in options]
+        best = max(range(len(options)), key=lambda i: (clear[i], -(values[i] + options[i][1])))
         return options[best][0]
+
+    def _meets_a_box(self, wanted: tuple[int, int], arrivals: dict[tuple[int, int], int]) -> bool:
+        """Whether a box is predicted to enter ``wanted`` at the next tick, or a box moving across the robot's way
+        to enter one of its next MEET_TICKS cells (``wanted``, then the followed layer's successors) no later than
+        the robot would get there, a move per tick. The next cell alone let the robot escort a box that drove across
+        its way: it stepped along the box's front, one cell per yield, for as long as the box drove. A box moving
+        along the robot's way is left to the next-cell test: waiting for it does not clear the way."""
+        if arrivals.get(wanted, math.inf) <= 1:
+            return True
+        ahead = self.route(MEET_TICKS)
+        if not ahead or ahead[0] != wanted:
+            return False
+        heading = np.subtract(ahead[-1], self.robot)
+        across = self.predictor.arrivals(self._ticks, MEET_TICKS, across=heading)
+        return any(across.get(cell, math.inf) <= moves_there for moves_there, cell in enumerate(ahead, start=1))
 
     def _escape(self) -> tuple[int, int] | None:
         """The robot's cell is occupied (a door closed on it, a box parked over it) and no layer offers a move: the

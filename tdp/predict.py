@@ -8,8 +8,9 @@ centres over the ticks between them is the track's velocity. A track whose edge 
 time it takes to move one cell (at its velocity, plus a tick) has stopped and is dropped.
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
-learns of each from the next edge it sees, one or two ticks late), it knows nothing of obstacles that do not move,
-and a new or reversed box is predicted only from its second edge on. No world ids are used.
+learns of each from the next edge it sees, one or two ticks late; a box that turns back is then taken to come back
+at the speed it went), it knows nothing of obstacles that do not move, and a new box is predicted only from its
+second edge on. No world ids are used.
 """
 from __future__ import annotations
 
@@ -68,12 +69,10 @@ class MotionPredictor:
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
             index = self._match(edge, tick, previous, matched)
-            seen = ((tick, edge.mean(axis=0)),)
-            velocity = None
+            velocity, seen = None, ((tick, edge.mean(axis=0)),)
             if index is not None:
                 matched.add(index)
-                seen = (previous[index].seen + seen)[-HISTORY:]
-                velocity = (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0])
+                velocity, seen = _continued(previous[index], tick, edge.mean(axis=0))
             tracks.append(Track(edge, tick, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
@@ -89,16 +88,20 @@ class MotionPredictor:
                 best, best_distance = i, distance
         return best
 
-    def arrivals(self, tick: int, ahead: int) -> dict[tuple[int, int], int]:
+    def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
         first such tick (1 = the next). A box slower than a cell per tick moves a cell at a time, every 1 / speed
         ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 / speed) ticks after
-        it, and only those ticks are flagged (a box seen every other tick is not expected every tick); a faster one
-        sweeps as in :meth:`entering`."""
+        it, and only those ticks are flagged (a box seen every other tick is not expected every tick), a move
+        overdue (no edge seen since its window began) from the next tick on; a faster one sweeps as in
+        :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
+        than 45 degrees to it either way)."""
         found: dict[tuple[int, int], int] = {}
         for track in self._moving(tick):
+            if across is not None and not _crosses(track.velocity, across):
+                continue
             for step in range(1, ahead + 1):
-                moved = self._moved_into(track, tick - track.tick + step)
+                moved = self._moved_into(track, tick - track.tick, step)
                 for cell in map(tuple, self._inside(np.vstack(moved)).tolist() if moved else []):
                     found.setdefault(cell, step)
         return found
@@ -114,19 +117,22 @@ class MotionPredictor:
         return cells[inside]
 
     @staticmethod
-    def _moved_into(track: Track, elapsed: int) -> list[np.ndarray]:
-        """The cells a track's edge may move into at ``elapsed`` ticks after its last edge was seen."""
+    def _moved_into(track: Track, waited: int, step: int) -> list[np.ndarray]:
+        """The cells a track's edge may move into at ``step`` ticks from now, ``waited`` ticks after its last edge
+        was seen. A slow box seen not to move since (a move overdue: its period is not a whole number of ticks, or
+        it slowed) has made none of its moves yet: they are counted from now on at the least."""
         speed = float(np.abs(track.velocity).max())
+        elapsed = waited + step
         if speed >= 1.0:
             return [track.edge + offset for offset in _swept_offsets(track.velocity * (elapsed - 1),
                                                                      track.velocity * elapsed)]
         period = 1.0 / speed
-        latest_moves = elapsed // math.floor(period)  # moves done by now at the most,
-        earliest_moves = (elapsed - 1) // math.ceil(period)  # and by the tick before at the least
+        latest_moves = min(elapsed // math.floor(period), 1 + (step - 1) // math.floor(period))  # by then at most,
+        earliest_moves = (step - 1) // math.ceil(period)  # and by the tick before at the least
         direction = track.velocity / speed
-        steps = {tuple(step) for step in np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64)}
-        return [track.edge + moves * np.array(step) for moves in range(earliest_moves + 1, latest_moves + 1)
-                for step in steps if any(step)]
+        units = {tuple(unit) for unit in np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64)}
+        return [track.edge + moves * np.array(unit) for moves in range(earliest_moves + 1, latest_moves + 1)
+                for unit in units if any(unit)]
 
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
@@ -167,3 +173,20 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
                     group.append(near)
         groups.append(np.array(sorted(group), np.int64))
     return groups
+
+
+def _continued(track: Track, tick: int, centre: np.ndarray) -> tuple[np.ndarray, tuple]:
+    """The velocity and edge history of ``track`` once its next edge (``centre``) is seen at ``tick``: the mean
+    velocity over its last HISTORY edges; a box whose edge moved against its velocity turned back, and is taken to
+    come back at the speed it went, its history starting again from this edge (a mean over edges on both sides of
+    the turn says it barely moves)."""
+    if track.velocity is not None and float(np.dot(centre - track.centre, track.velocity)) < 0:
+        return -track.velocity, ((tick, centre),)
+    seen = (track.seen + ((tick, centre),))[-HISTORY:]
+    return (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), seen
+
+
+def _crosses(velocity: np.ndarray, direction: np.ndarray) -> bool:
+    """Whether ``velocity`` points at more than 45 degrees to the line of ``direction`` (either way along it)."""
+    along = abs(float(np.dot(velocity, direction)))
+    return along * along < 0.5 * float(np.dot(velocity, velocity)) * float(np.dot(direction, direction))

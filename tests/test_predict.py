@@ -61,6 +61,32 @@ def test_a_box_seen_every_other_tick_is_expected_every_other_tick():
     assert predictor.arrivals(7, 1) == {cell: 1 for cell in cells_of(column(13))}
 
 
+def test_a_move_overdue_is_expected_from_the_next_tick():
+    """Edges at columns 10, 11 at ticks 2, 4 (half a cell per tick): the next move is due at tick 6. At tick 6 no
+    edge came (the box slowed): column 12 is expected at tick 7, not skipped for column 13 (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((2, 10), (4, 11)):
+        predictor.observe(tick, column(col))
+        predictor.observe(tick + 1, np.zeros((0, 2)))
+    predictor.observe(6, np.zeros((0, 2)))
+    assert predictor.arrivals(6, 1) == {cell: 1 for cell in cells_of(column(12))}
+    assert predictor.arrivals(6, 3) == {**{cell: 1 for cell in cells_of(column(12))},
+                                        **{cell: 3 for cell in cells_of(column(13))}}
+
+
+def test_a_box_that_turns_back_is_expected_back_at_its_speed():
+    """A 3-cell-wide box moving right half a cell per tick (leading edges at columns 10, 11, 12 at ticks 2, 4, 6)
+    turns back at tick 8: the cells that become occupied are column 9, on its other side. It is expected back at
+    half a cell per tick (column 8 at tick 10), not taken to barely move (the mean over the last four edges says
+    -1/6 cells per tick) (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((2, 10), (4, 11), (6, 12), (8, 9)):
+        predictor.observe(tick, column(col))
+        predictor.observe(tick + 1, np.zeros((0, 2)))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, -0.5])
+    assert predictor.arrivals(8, 2) == {cell: 2 for cell in cells_of(column(8))}
+
+
 def test_the_velocity_is_the_mean_over_the_last_edges():
     """Edges 3, 3 and 4 ticks apart (0.3 cells per tick): the velocity is 3 cells over 10 ticks, not the last
     interval's 1/4."""
@@ -134,6 +160,20 @@ def test_avoiding_boxes_keeps_the_robot_out_of_their_way():
         assert record["reached"] and record["collisions"] == 0
         hits[avoid] = record["hits"]
     assert hits[False] > 0 and hits[True] == 0
+
+
+@pytest.mark.parametrize("box_col", [12, 16])
+def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(box_col):
+    """Open ground, the robot driving east along row 20, a 6 x 6 box driving south across its way at half a cell
+    per tick. With avoid_boxes the robot waits for the box to pass and keeps to its row (within a cell); checking
+    only its next cell, it stepped aside along the box's front, a cell per yield, down to row 43 (86 cells of path
+    against 55)."""
+    box = tdp.Obstacle((12, box_col, 18, box_col + 6), waypoints=((40, box_col),), speed=0.5)
+    scenario = tdp.Scenario(tdp.GridMap(np.zeros((44, 60), bool)), (20, 2), (20, 57), obstacles=[box])
+    record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=True, updates_per_move=1), 300)
+    rows = [row for row, _ in record["trajectory"]]
+    assert record["reached"] and record["collisions"] == 0 and record["hits"] == 0
+    assert 19 <= min(rows) and max(rows) <= 21 and record["length"] < 56.0
 
 
 def test_prediction_turns_the_robot_earlier_when_a_box_moves_into_its_passage():
