@@ -236,8 +236,8 @@ class Navigator:
         if result.next_cell is None and self.state == "backup":
             self.state, self._subgoal = "no-route", None  # no node layer offers a move: the goal layer's
             result.next_cell = self._next_cell()
-        if result.next_cell is None and self.engine.occupied[self.robot]:
-            result.next_cell = self._escape()
+        if self.engine.occupied[self.robot]:
+            result.next_cell = self._escape() or result.next_cell
         search_s = time.perf_counter() - began
         moving = result.next_cell is not None or self.robot == self.goal
         result.mode = (Mode.BACKUP if self.state == "backup" else Mode.DP) if moving else Mode.WAIT
@@ -310,14 +310,19 @@ class Navigator:
         return any(across.get(cell, math.inf) <= moves_there for moves_there, cell in enumerate(ahead, start=1))
 
     def _escape(self) -> tuple[int, int] | None:
-        """The robot's cell is occupied (a door closed on it, a box parked over it) and no layer offers a move: the
-        first move of the shortest way out towards the goal (:func:`~tdp.stencil.escape_move`)."""
-        def goal_distances(cells):
-            values = self.engine.sample(cells)[:, 0].astype(np.float64)
+        """The robot's cell is occupied (a door closed on it, a box parked over it): the first move of the shortest
+        way out, through the cells occupied since the map was given (never its own walls), towards the followed
+        layer's target (:func:`~tdp.stencil.escape_move`); None when no way out within ESCAPE_CELLS reaches a
+        finite value. The layer's own successor is one of the ways out; a door that closed on the robot in its
+        doorway may have its shorter way out on the far side."""
+        layer = self._followed_layer()
+
+        def layer_distances(cells):
+            values = self.engine.sample(cells)[:, layer].astype(np.float64)
             return np.where(values >= self.config.d_max, np.inf, values)
 
         allowed = moves(self.config.neighbourhood, self.config.corner_cutting)
-        return escape_move(self.engine.occupied, self.robot, allowed, goal_distances)
+        return escape_move(self.engine.occupied, self.robot, allowed, layer_distances, walls=self.grid.occupied)
 
     def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
         """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""

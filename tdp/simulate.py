@@ -55,6 +55,7 @@ class Oracle:
     def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
         self.field = DistanceField(grid, goal, config.neighbourhood, config.corner_cutting, config.d_max)
         self.moves = moves(config.neighbourhood, config.corner_cutting)
+        self.walls = grid.occupied.copy()
         self.robot = start
 
     def update_map(self, cells, occupied) -> None:
@@ -71,12 +72,11 @@ class Oracle:
         began = time.perf_counter()
         self.field.converge()
         step = self.field.successor(self.robot)
-        if step is None and self.field.occupied[self.robot]:
-            step = escape_move(self.field.occupied, self.robot, self.moves, self._goal_distances)
+        if self.field.occupied[self.robot]:
+            step = escape_move(self.field.occupied, self.robot, self.moves, self._goal_distances, self.walls) or step
         result = TickResult(mode=Mode.ORACLE, next_cell=step)
         result.timings = {"converge": time.perf_counter() - began}
         return result
-
 
     def _goal_distances(self, cells: list) -> np.ndarray:
         values = np.array([self.field.distance(cell) for cell in cells])

@@ -82,11 +82,14 @@ def legal_moves(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
 
 
 def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...],
-                distances_at: Callable[[list], np.ndarray], max_length: float = ESCAPE_CELLS) -> tuple[int, int] | None:
+                distances_at: Callable[[list], np.ndarray], walls: np.ndarray | None = None,
+                max_length: float = ESCAPE_CELLS) -> tuple[int, int] | None:
     """The first move out of an obstacle that covers ``cell`` (a door closed on the robot, a box parked over it):
-    the shortest walk of ``allowed`` moves through occupied cells (crossings ignored: the robot is inside already),
-    at most ``max_length`` cells long, to the free cell that minimises walk length + its distance to the goal
-    (``distances_at(cells)``, inf where the goal cannot be reached). None when no such cell has a finite distance."""
+    the shortest walk of ``allowed`` moves through occupied cells, at most ``max_length`` cells long, to the free
+    cell that minimises walk length + its distance to the goal (``distances_at(cells)``, inf where the goal cannot
+    be reached). ``walls`` (a mask like ``occupied``; None: none) are the map's own obstacles: the walk never
+    enters or crosses them, while the occupied cells it walks through may be crossed (the robot is inside them
+    already). None when no such free cell has a finite distance."""
     rows, cols = occupied.shape
     reached = {cell: 0.0}
     heap = [(0.0, cell, cell)]
@@ -98,6 +101,8 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
         for m in allowed:
             there, walked = (here[0] + m.dr, here[1] + m.dc), length + m.cost
             if not (0 <= there[0] < rows and 0 <= there[1] < cols) or walked > max_length:
+                continue
+            if walls is not None and any(walls[here[0] + dr, here[1] + dc] for dr, dc in ((m.dr, m.dc),) + m.crossed):
                 continue
             step = there if here == cell else first
             if not occupied[there]:

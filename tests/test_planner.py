@@ -322,6 +322,24 @@ def test_a_thick_door_closing_on_the_robot_in_its_doorway_lets_it_drive_out(acce
     assert scenario.parked_over(11, (12, 15)).sum() == 12 and not scenario.parked_over(11, (5, 5)).any()
 
 
+@pytest.mark.parametrize("accelerating", [True, False])
+def test_a_door_closing_on_the_robot_lets_it_drive_on_through_when_that_side_is_shorter(accelerating):
+    """A wall two cells thick with a doorway and, far to the west, a gap; the door closes while the robot is in its
+    first row. The cell behind it is free (a legal move back, 30 cells round by the gap), the far side two moves
+    on through the door: the robot drives on through the door's cells (rooms-100-105 at K = 4 went back and round:
+    1.417 against the oracle), the oracle too, and never through the static wall."""
+    occupied = np.zeros((30, 30), bool)
+    occupied[12:14, 2:] = True
+    occupied[12:14, 14:17] = False
+    door = tdp.Obstacle(box=(12, 14, 14, 17), appear_at=11)
+    scenario = tdp.Scenario(tdp.GridMap(occupied), (2, 15), (27, 15), obstacles=[door], name="door-behind")
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4, accelerating=accelerating), max_ticks=120)
+    assert episode.trajectory[10] == (12, 15)  # in the doorway's first row when the door closes
+    assert episode.reached and episode.collisions == 0
+    assert episode.length == pytest.approx(25.0) and episode.oracle_length == pytest.approx(25.0)
+    assert all(not occupied[cell] or 14 <= cell[1] < 17 for cell in episode.trajectory)
+
+
 def test_escape_move_takes_the_shortest_way_out_towards_the_goal():
     occupied = np.zeros((12, 12), bool)
     occupied[3:8, :] = True  # a band five rows thick; the robot inside it at row 4
@@ -331,6 +349,13 @@ def test_escape_move_takes_the_shortest_way_out_towards_the_goal():
     assert escape_move(occupied, (4, 5), allowed, towards_row(11)) == (5, 5)  # four down: 4 + 3 beats 2 + 9
     assert escape_move(occupied, (4, 5), allowed, lambda cells: np.full(len(cells), np.inf)) is None
     assert escape_move(occupied, (4, 5), allowed, towards_row(0), max_length=1.5) is None
+    walls = occupied.copy()
+    walls[3:8, 4:7] = False  # the band is a wall but for a door of columns 4-6 the robot is in
+    towards_corner = lambda cells: np.array([abs(r - 11) + abs(c - 11) for r, c in cells], float)  # noqa: E731
+    assert escape_move(occupied, (4, 6), allowed, towards_corner) == (5, 7)  # through the wall, diagonally
+    assert escape_move(occupied, (4, 6), allowed, towards_corner, walls=walls) == (5, 6)  # down the door
+    walls[3:8, 4:7] = True
+    assert escape_move(occupied, (4, 5), allowed, towards_row(0), walls=walls) is None  # walls only: no way out
 
 
 @pytest.mark.parametrize("kwargs, message", [
