@@ -85,12 +85,16 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
                 distances_at: Callable[[list], np.ndarray], walls: np.ndarray | None = None,
                 max_length: float = ESCAPE_CELLS) -> tuple[int, int] | None:
     """The first move out of an obstacle that covers ``cell`` (a door closed on the robot, a box parked over it):
-    the shortest walk of ``allowed`` moves through occupied cells, at most ``max_length`` cells long, to the free
-    cell that minimises walk length + its distance to the goal (``distances_at(cells)``, inf where the goal cannot
-    be reached). ``walls`` (a mask like ``occupied``; None: none) are the map's own obstacles: the walk never
-    enters or crosses them, while the occupied cells it walks through may be crossed (the robot is inside them
-    already). None when no such free cell has a finite distance."""
-    rows, cols = occupied.shape
+    the shortest walk of ``allowed`` moves through occupied cells, at most ``max_length`` cells long and never
+    deeper into the obstacle (each cell walked through is no further from a free cell than the one before), to the
+    free cell that minimises walk length + its distance to the goal (``distances_at(cells)``, inf where the goal
+    cannot be reached). So a robot in a doorway when its door closes leaves by the side towards the goal, and one
+    under a box that parked backs out by the nearest side, not through the box. ``walls`` (a mask like
+    ``occupied``; None: none) are the map's own obstacles: the walk never enters or crosses them, while the
+    occupied cells it walks through may be crossed (the robot is inside them already). None when no such free
+    cell has a finite distance."""
+    walls = np.zeros_like(occupied) if walls is None else walls
+    depth = _depths(occupied, walls, cell, allowed, math.ceil(max_length))
     reached = {cell: 0.0}
     heap = [(0.0, cell, cell)]
     exits: dict[tuple[int, int], tuple[float, tuple[int, int]]] = {}
@@ -98,17 +102,15 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
         length, here, first = heapq.heappop(heap)
         if length > reached[here]:
             continue
-        for m in allowed:
-            there, walked = (here[0] + m.dr, here[1] + m.dc), length + m.cost
-            if not (0 <= there[0] < rows and 0 <= there[1] < cols) or walked > max_length:
+        for there, m in _moves_clear_of(walls, here, allowed):
+            walked, step = length + m.cost, there if here == cell else first
+            if walked > max_length:
                 continue
-            if walls is not None and any(walls[here[0] + dr, here[1] + dc] for dr, dc in ((m.dr, m.dc),) + m.crossed):
-                continue
-            step = there if here == cell else first
             if not occupied[there]:
                 if walked < exits.get(there, (math.inf,))[0]:
                     exits[there] = (walked, step)
-            elif walked < reached.get(there, math.inf):
+            elif walked < reached.get(there, math.inf) and all(
+                    depth.get(c, math.inf) <= depth[here] for c in _passed(here, m) if occupied[c]):
                 reached[there] = walked
                 heapq.heappush(heap, (walked, there, step))
     if not exits:
@@ -117,3 +119,44 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
     totals = [exits[c][0] + float(d) for c, d in zip(cells, distances_at(cells))]
     best = int(np.argmin(totals))
     return exits[cells[best]][1] if math.isfinite(totals[best]) else None
+
+
+def _moves_clear_of(walls: np.ndarray, here: tuple[int, int], allowed: tuple[Move, ...]):
+    """(cell, move) of each of ``allowed`` moves from ``here`` that stays on the map and enters or crosses no
+    wall."""
+    rows, cols = walls.shape
+    for m in allowed:
+        there = (here[0] + m.dr, here[1] + m.dc)
+        if 0 <= there[0] < rows and 0 <= there[1] < cols and not any(walls[c] for c in _passed(here, m)):
+            yield there, m
+
+
+def _passed(here: tuple[int, int], m: Move) -> list[tuple[int, int]]:
+    """The cells move ``m`` from ``here`` enters or crosses."""
+    return [(here[0] + dr, here[1] + dc) for dr, dc in ((m.dr, m.dc),) + m.crossed]
+
+
+def _depths(occupied: np.ndarray, walls: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...],
+            radius: int) -> dict[tuple[int, int], float]:
+    """For each occupied cell that is not a wall within ``radius`` cells of ``cell`` (rows and columns), the length
+    of the shortest walk of ``allowed`` moves through such cells to a free cell (moves are symmetric: a search
+    from all the free cells at once)."""
+    r0, c0 = max(0, cell[0] - radius), max(0, cell[1] - radius)
+    window = (slice(r0, cell[0] + radius + 1), slice(c0, cell[1] + radius + 1))
+    inside = {(int(r) + r0, int(c) + c0) for r, c in np.argwhere(occupied[window] & ~walls[window])}
+    depth: dict[tuple[int, int], float] = {}
+    for here in inside:
+        out = [m.cost for there, m in _moves_clear_of(walls, here, allowed) if not occupied[there]]
+        if out:
+            depth[here] = min(out)
+    heap = [(d, here) for here, d in depth.items()]
+    heapq.heapify(heap)
+    while heap:
+        d, here = heapq.heappop(heap)
+        if d > depth[here]:
+            continue
+        for there, m in _moves_clear_of(walls, here, allowed):
+            if there in inside and d + m.cost < depth.get(there, math.inf):
+                depth[there] = d + m.cost
+                heapq.heappush(heap, (d + m.cost, there))
+    return depth

@@ -340,20 +340,23 @@ def test_a_door_closing_on_the_robot_lets_it_drive_on_through_when_that_side_is_
     assert all(not occupied[cell] or 14 <= cell[1] < 17 for cell in episode.trajectory)
 
 
-def test_escape_move_takes_the_shortest_way_out_towards_the_goal():
+def test_escape_move_takes_the_shortest_way_out_towards_the_goal_never_deeper():
     occupied = np.zeros((12, 12), bool)
-    occupied[3:8, :] = True  # a band five rows thick; the robot inside it at row 4
+    occupied[3:8, :] = True  # a band five rows thick
     allowed = tdp.stencil.moves(16)
     towards_row = lambda row: lambda cells: np.array([abs(r - row) for r, _ in cells], float)  # noqa: E731
     assert escape_move(occupied, (4, 5), allowed, towards_row(0)) == (3, 5)  # two straight moves up
-    assert escape_move(occupied, (4, 5), allowed, towards_row(11)) == (5, 5)  # four down: 4 + 3 beats 2 + 9
+    assert escape_move(occupied, (4, 5), allowed, towards_row(11)) == (3, 5)  # down is shorter overall (4 + 3
+    # against 2 + 9) but through the band's middle, deeper in: the robot backs out the side it is nearest
+    assert escape_move(occupied, (5, 5), allowed, towards_row(11)) == (6, 5)  # from the middle, either side:
+    assert escape_move(occupied, (5, 5), allowed, towards_row(0)) == (4, 5)  # the goal's
     assert escape_move(occupied, (4, 5), allowed, lambda cells: np.full(len(cells), np.inf)) is None
     assert escape_move(occupied, (4, 5), allowed, towards_row(0), max_length=1.5) is None
     walls = occupied.copy()
     walls[3:8, 4:7] = False  # the band is a wall but for a door of columns 4-6 the robot is in
     towards_corner = lambda cells: np.array([abs(r - 11) + abs(c - 11) for r, c in cells], float)  # noqa: E731
-    assert escape_move(occupied, (4, 6), allowed, towards_corner) == (5, 7)  # through the wall, diagonally
-    assert escape_move(occupied, (4, 6), allowed, towards_corner, walls=walls) == (5, 6)  # down the door
+    assert escape_move(occupied, (6, 6), allowed, towards_corner) == (7, 8)  # a knight move across the band
+    assert escape_move(occupied, (6, 6), allowed, towards_corner, walls=walls) == (7, 6)  # down the door
     walls[3:8, 4:7] = True
     assert escape_move(occupied, (4, 5), allowed, towards_row(0), walls=walls) is None  # walls only: no way out
 
