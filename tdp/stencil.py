@@ -73,12 +73,8 @@ def moves(neighbourhood: int = 16, corner_cutting: bool = False) -> tuple[Move, 
 def legal_moves(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...]):
     """(neighbour, length) of each of the ``allowed`` moves from ``cell`` into a free cell of the bool map
     ``occupied`` (True = obstacle), crossing only free cells; cells outside the map count as occupied."""
-    rows, cols = occupied.shape
-    r, c = cell
-    for m in allowed:
-        if all(0 <= i < rows and 0 <= j < cols and not occupied[i, j]
-               for i, j in [(r + m.dr, c + m.dc)] + [(r + dr, c + dc) for dr, dc in m.crossed]):
-            yield (r + m.dr, c + m.dc), m.cost
+    for there, m in _moves_clear_of(occupied, cell, allowed):
+        yield there, m.cost
 
 
 def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...],
@@ -121,13 +117,13 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
     return exits[cells[best]][1] if math.isfinite(totals[best]) else None
 
 
-def _moves_clear_of(walls: np.ndarray, here: tuple[int, int], allowed: tuple[Move, ...]):
-    """(cell, move) of each of ``allowed`` moves from ``here`` that stays on the map and enters or crosses no
-    wall."""
-    rows, cols = walls.shape
+def _moves_clear_of(blocked: np.ndarray, here: tuple[int, int], allowed: tuple[Move, ...]):
+    """(cell, move) of each of ``allowed`` moves from ``here`` that stays on the map and enters or crosses no cell
+    of the bool map ``blocked`` (the cells a move crosses lie between its ends, so on the map too)."""
+    rows, cols = blocked.shape
     for m in allowed:
         there = (here[0] + m.dr, here[1] + m.dc)
-        if 0 <= there[0] < rows and 0 <= there[1] < cols and not any(walls[c] for c in _passed(here, m)):
+        if 0 <= there[0] < rows and 0 <= there[1] < cols and not any(blocked[c] for c in _passed(here, m)):
             yield there, m
 
 
