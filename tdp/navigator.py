@@ -131,6 +131,7 @@ class Navigator:
         self.grid = grid
         self.config = config
         self.robot = grid.check_free_cell(start, "start")
+        self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
         goal = grid.check_free_cell(goal, "goal")
         if config.accelerating:
             count = None if config.spacing is not None else config.nodes
@@ -183,6 +184,7 @@ class Navigator:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         flags = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        self._walls[cells[~flags, 0], cells[~flags, 1]] = False
         if self.predictor is not None:
             self._became_occupied.append(cells[flags & ~self.engine.occupied[cells[:, 0], cells[:, 1]]])
         self.engine.set_cells(cells, flags)
@@ -311,7 +313,8 @@ class Navigator:
 
     def _escape(self) -> tuple[int, int] | None:
         """The robot's cell is occupied (a door closed on it, a box parked over it): the first move of the shortest
-        way out, through the cells occupied since the map was given (never its own walls), towards the followed
+        way out, through the obstacles (never its walls: the cells occupied in the map it was given and never freed
+        since, so a box that stood there at the start and drove off is no wall), towards the followed
         layer's target (:func:`~tdp.stencil.escape_move`); None when no way out within ESCAPE_CELLS reaches a
         finite value. The layer's own successor is one of the ways out; a door that closed on the robot in its
         doorway may have its shorter way out on the far side."""
@@ -322,7 +325,7 @@ class Navigator:
             return np.where(values >= self.config.d_max, np.inf, values)
 
         allowed = moves(self.config.neighbourhood, self.config.corner_cutting)
-        return escape_move(self.engine.occupied, self.robot, allowed, layer_distances, walls=self.grid.occupied)
+        return escape_move(self.engine.occupied, self.robot, allowed, layer_distances, walls=self._walls)
 
     def _legal_moves(self) -> list[tuple[tuple[int, int], float]]:
         """(cell, cost) of every stencil move from R into a free cell, crossing only free cells."""

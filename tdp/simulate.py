@@ -55,12 +55,13 @@ class Oracle:
     def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
         self.field = DistanceField(grid, goal, config.neighbourhood, config.corner_cutting, config.d_max)
         self.moves = moves(config.neighbourhood, config.corner_cutting)
-        self.walls = grid.occupied.copy()
+        self.walls = grid.occupied.copy()  # the map's own obstacles: occupied at the start and never freed since
         self.robot = start
 
     def update_map(self, cells, occupied) -> None:
         for value in (True, False):
             self.field.set_occupied(cells[occupied == value], value)
+        self.walls[cells[~occupied, 0], cells[~occupied, 1]] = False
 
     def set_goal(self, goal) -> None:
         self.field.set_goal(goal)

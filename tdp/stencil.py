@@ -87,8 +87,9 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
     cannot be reached). So a robot in a doorway when its door closes leaves by the side towards the goal, and one
     under a box that parked backs out by the nearest side, not through the box. ``walls`` (a mask like
     ``occupied``; None: none) are the map's own obstacles: the walk never enters or crosses them, while the
-    occupied cells it walks through may be crossed (the robot is inside them already). None when no such free
-    cell has a finite distance."""
+    occupied cells it walks through may be crossed (the robot is inside them already); a robot on a wall, or under
+    an obstacle with no way out within reach, may walk through any occupied cell that is not a wall. None when no
+    such free cell has a finite distance."""
     walls = np.zeros_like(occupied) if walls is None else walls
     depth = _depths(occupied, walls, cell, allowed, math.ceil(max_length))
     reached = {cell: 0.0}
@@ -106,7 +107,7 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
                 if walked < exits.get(there, (math.inf,))[0]:
                     exits[there] = (walked, step)
             elif walked < reached.get(there, math.inf) and all(
-                    depth.get(c, math.inf) <= depth[here] for c in _passed(here, m) if occupied[c]):
+                    depth.get(c, math.inf) <= depth.get(here, math.inf) for c in _passed(here, m) if occupied[c]):
                 reached[there] = walked
                 heapq.heappush(heap, (walked, there, step))
     if not exits:

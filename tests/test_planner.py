@@ -359,6 +359,19 @@ def test_escape_move_takes_the_shortest_way_out_towards_the_goal_never_deeper():
     assert escape_move(occupied, (6, 6), allowed, towards_corner, walls=walls) == (7, 6)  # down the door
     walls[3:8, 4:7] = True
     assert escape_move(occupied, (4, 5), allowed, towards_row(0), walls=walls) is None  # walls only: no way out
+    on_a_wall = np.zeros_like(occupied)
+    on_a_wall[4, 5] = True  # the robot's own cell is a wall: it leaves through the band by the shortest way
+    assert escape_move(occupied, (4, 5), allowed, towards_row(0), walls=on_a_wall) == (3, 5)
+
+
+@pytest.mark.parametrize("accelerating", [True, False])
+def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelerating):
+    """cluttered-100-217 at K = 4: a box parks over the robot on a cell another box covered in the map the navigator
+    was given. That cell was taken for one of the map's walls (the escape then failed with a KeyError); a cell freed
+    since the start is no wall, and the robot drives out."""
+    scenario = make_world("cluttered", 100, 217)
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4, accelerating=accelerating))
+    assert episode.reached and episode.collisions == 0
 
 
 @pytest.mark.parametrize("kwargs, message", [
