@@ -463,11 +463,9 @@ class Navigator:
 
         The successors only ever make legal moves on the current map, so a chain from R that reaches G is a real
         route; while the news of a cut is still travelling, the chain runs into the cut and does not reach G. The
-        route must be at most EVIDENCE_SLACK longer than the backup's estimate from R, and settled: its length at
-        most U above the goal layer's value at R (a gap of U or more is a rise the layer has not yet seen to the
-        robot, whatever route the successors take once it arrives), and along its first s cells each value equal
-        to its successor's plus the move (within SETTLED_CELLS), i.e. no change is still arriving where the robot
-        is about to drive."""
+        route must be at most EVIDENCE_SLACK longer than the backup's estimate from R, and settled near the robot:
+        along its first s cells each value equals its successor's plus the move (within SETTLED_CELLS), i.e. no
+        change is still arriving where the robot is about to drive (further on it has time to settle)."""
         budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
         chain = self._real_goal_route(4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1)
         if chain is None:
@@ -477,8 +475,6 @@ class Navigator:
             return False
         near = int(np.searchsorted(np.cumsum(steps), self.spacing)) + 1
         values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
-        if steps.sum() - values[0] > self.config.rise:
-            return False
         return bool((values[1:] + steps[:near] - values[:-1] <= SETTLED_CELLS).all())
 
     def _real_goal_route(self, max_steps: int) -> list[tuple[int, int]] | None:
