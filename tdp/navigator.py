@@ -454,18 +454,23 @@ class Navigator:
                 self._search(result, keep_count=True)
         elif self.state == "no-route":
             self._search(result, keep_count=False)
-        if self.state != "dp" and self.config.switch_back == "evidence" and self._goal_layer_beats_backup():
+        if self.state != "dp" and self.config.switch_back == "evidence" and self._goal_layer_beats_backup(
+                settled_route=following_backup):
             result.switched_back = following_backup
             self.state, self._subgoal = "dp", None
 
-    def _goal_layer_beats_backup(self) -> bool:
+    def _goal_layer_beats_backup(self, settled_route: bool) -> bool:
         """Whether the goal layer can be trusted again and knows a route no longer than the backup's.
 
         The successors only ever make legal moves on the current map, so a chain from R that reaches G is a real
         route; while the news of a cut is still travelling, the chain runs into the cut and does not reach G. The
         route must be at most EVIDENCE_SLACK longer than the backup's estimate from R, and settled near the robot:
-        along its first s cells each value equals its successor's plus the move (within SETTLED_CELLS), i.e. no
-        change is still arriving where the robot is about to drive (further on it has time to settle)."""
+        along its first s cells each value equal to its successor's plus the move (within SETTLED_CELLS), i.e. no
+        change is still arriving where the robot is about to drive. With ``settled_route`` (leaving a backup the
+        robot already follows) it must also be settled as a whole: its length at most U above the goal layer's
+        value at R. A larger gap is a rise still on its way to R (the successors turn once it arrives) or detours
+        round boxes that moved far ahead; the two cannot be told apart here, so the test holds only once the robot
+        has turned to a detour (not deciding whether to start one), where leaving on a rise in transit costs most."""
         budget = self._backup_cost_from_robot() * (1 + EVIDENCE_SLACK)
         chain = self._real_goal_route(4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1)
         if chain is None:
@@ -475,6 +480,8 @@ class Navigator:
             return False
         near = int(np.searchsorted(np.cumsum(steps), self.spacing)) + 1
         values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
+        if settled_route and steps.sum() - values[0] > self.config.rise:
+            return False
         return bool((values[1:] + steps[:near] - values[:-1] <= SETTLED_CELLS).all())
 
     def _real_goal_route(self, max_steps: int) -> list[tuple[int, int]] | None:

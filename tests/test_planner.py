@@ -270,6 +270,34 @@ def test_evidence_leaves_the_backup_once_the_goal_layer_knows_a_route_at_least_a
     assert evidence.ratio <= paper.ratio + 0.005
 
 
+@pytest.mark.parametrize("seed", [41, 104])
+def test_leaving_a_backup_by_evidence_takes_a_settled_route_to_the_goal(seed):
+    """Rooms whose door closes on the route at K = 4: once the robot leaves its last backup it drives the exact
+    shortest route (scipy's Dijkstra on the map of that tick) to the goal. The goal layer's chain already reached
+    the goal there while its value at R was still 12 cells short of that chain's length; following that layer as
+    the rise arrived cost 9 cells (ratio 1.09 against plain DP's 1.065)."""
+    scenario = make_world("rooms", 100, seed)
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4))
+    assert episode.reached and "backup" in episode.modes
+    left = len(episode.modes) - episode.modes[::-1].index("backup")
+    cell = episode.trajectory[left]
+    driven = np.hypot(*np.diff(np.array(episode.trajectory[left:]), axis=0).T).sum()
+    assert driven == pytest.approx(distances_to(scenario.occupancy(left), scenario.goal)[cell], abs=0.01)
+
+
+def test_a_route_lengthened_by_boxes_far_ahead_starts_no_backup():
+    """cluttered-200-4 at K = 1: a justified detection, while the goal layer's value at R is within 1.4 cells of the
+    exact distance but its successors' route runs 20 cells longer round boxes that moved far ahead. Asking that
+    route to be settled before a backup starts made the robot follow one for 78 ticks (1.093 against plain DP's
+    1.017); the whole-route test is asked only when leaving a backup."""
+    scenario = make_world("cluttered", 200, 4)
+    config = tdp.NavigatorConfig(updates_per_move=1)
+    accelerating = tdp.simulate(scenario, config)
+    plain = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=1, accelerating=False))
+    assert accelerating.detections and "backup" not in accelerating.modes
+    assert accelerating.ratio <= plain.ratio + 0.005
+
+
 @pytest.mark.parametrize("seed, k", [(105, 4), (129, 1), (119, 1)])
 def test_every_backup_edge_is_a_real_connection_on_the_map_of_its_tick(seed, k):
     """Rooms whose doors close on the route: each edge of every backup path joins two vertices whose exact distance
