@@ -27,6 +27,26 @@ def median_time(run: Callable[[], object], repeats: int, warmup: int = 1) -> flo
     return statistics.median(times)
 
 
+def paired_times(first: Callable[[], object], second: Callable[[], object], repeats: int,
+                 warmup: int = 1) -> tuple[float, float, float]:
+    """Medians (seconds) of ``repeats`` calls of ``first`` and of ``second`` timed in turn, and the median of the
+    per-pair ratios first / second, after ``warmup`` untimed calls of each. This VM's speed drifts over seconds:
+    the two of a pair run at the same speed, so the ratio of each pair keeps the drift out."""
+    for _ in range(warmup):
+        first()
+        second()
+    pairs = []
+    for _ in range(repeats):
+        pair = []
+        for run in (first, second):
+            began = time.perf_counter()
+            run()
+            pair.append(time.perf_counter() - began)
+        pairs.append(pair)
+    return (statistics.median(a for a, _ in pairs), statistics.median(b for _, b in pairs),
+            statistics.median(a / b for a, b in pairs))
+
+
 def machine() -> dict:
     """What the numbers were measured on."""
     cpu = "unknown"

@@ -5,14 +5,16 @@
 Maps: random (20 % obstacles) of growing size, each with goals at a corner, the centre and a random cell; the
 MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
 world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. The 16-neighbour graph is
-built once and timed apart; Dijkstra's solve, scikit-fmm's whole-field distance (when installed; a different,
-continuous distance, timed only) and a from-scratch converge() (``reset()`` then ``converge()``) are warm medians
-of repeats in the same process, and the field is checked equal to Dijkstra's.
+built once and timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are
+timed in turn, warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the
+solve takes under 5 ms), scikit-fmm's whole-field distance (when installed; a different, continuous distance,
+timed only) as a warm median, and the field is checked equal to Dijkstra's.
 
 Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle
 of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, and a goal move; each
 timed as edit + ``converge()`` (the edit undone, untimed, between repeats), checked bit for bit against a fresh
-field's converge() on the edited map, and set against that field's from-scratch converge(), the two timed in turn.
+field's converge() on the edited map, and set against that field's from-scratch converge(), the two timed in turn
+(the ratio again the median of each pair's).
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ from scipy import ndimage
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import median_time, print_table, quick_parser, save_results
+from benchmarks.common import median_time, paired_times, print_table, quick_parser, save_results
 from benchmarks.reference_graph import grid_graph
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -35,6 +37,7 @@ SIZES, QUICK_SIZES = [256, 512, 1024, 2048], [64, 128]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
 LARGE = 65536  # maps from this size on get the repair cases and the worst-case target (4096 with --quick)
+FAST_S, FAST_REPEATS = 0.005, 5  # a reference solve under 5 ms gets 5 times the repeats: its timings are noisier
 WALL = 16
 
 try:
@@ -116,18 +119,20 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: i
     graph = grid_graph(occupied).T.tocsr()  # transposed: distances *to* the goal
     build_s = time.perf_counter() - began
     source = goal[0] * cols + goal[1]
+    began = time.perf_counter()
     reference = dijkstra(graph, indices=source).reshape(rows, cols)
-    dijkstra_s = median_time(lambda: dijkstra(graph, indices=source), repeats)
+    repeats *= FAST_REPEATS if time.perf_counter() - began < FAST_S else 1
     field = field_on(occupied, goal)
     rounds = field.converge()
-    converge_s = median_time(lambda: from_scratch(field), repeats)
+    converge_s, dijkstra_s, ratio = paired_times(lambda: from_scratch(field), lambda: dijkstra(graph, indices=source),
+                                                 repeats)
     ours = field.distances()
     finite = np.isfinite(reference)
     exact = bool(np.array_equal(np.isfinite(ours), finite)) and bool(
         np.allclose(ours[finite], reference[finite], rtol=1e-5))
     fmm_s = fmm_seconds(occupied, goal, repeats)
     result = {"map": name, "cells": rows * cols, "build_ms": build_s * 1e3, "dijkstra_ms": dijkstra_s * 1e3,
-              "converge_ms": converge_s * 1e3, "rounds": rounds, "ratio": converge_s / dijkstra_s, "equal": exact,
+              "converge_ms": converge_s * 1e3, "rounds": rounds, "ratio": ratio, "equal": exact,
               "fmm_ms": None if fmm_s is None else fmm_s * 1e3,
               "fmm_ratio": None if fmm_s is None else converge_s / fmm_s}
     if rows * cols >= repair_cells:
@@ -167,7 +172,8 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
 
 def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int) -> dict:
     """Edit + converge() from the converged field, against a fresh field's from-scratch converge() on the edited
-    map, the two timed in turn (the VM's speed drifts: interleaving keeps it out of the ratio)."""
+    map, the two timed in turn; the ratio is the median of each pair's (the VM's speed drifts: pairing keeps it
+    out of the ratio)."""
     apply, undo = repair_edit(field, kind, reference)
     apply()
     fresh = field_on(field.occupied, field.goal)
@@ -186,8 +192,9 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
         from_scratch(fresh)
         scratches.append(time.perf_counter() - began)
     repair_s, scratch_s = float(np.median(repairs[1:])), float(np.median(scratches[1:]))
+    ratio = float(np.median(np.array(repairs[1:]) / np.array(scratches[1:])))
     return {"kind": kind, "repair_ms": repair_s * 1e3, "scratch_ms": scratch_s * 1e3,
-            "ratio": repair_s / scratch_s, "equal": bool(np.array_equal(repaired, fresh.distances()))}
+            "ratio": ratio, "equal": bool(np.array_equal(repaired, fresh.distances()))}
 
 
 def figure(results: list[dict], path: Path) -> None:
