@@ -139,6 +139,27 @@ def test_ratios_are_lengths_over_the_oracle_of_the_same_world(tmp_path):
     assert (tmp_path / "ratio.png").stat().st_size > 1000
 
 
+def test_two_worlds_on_one_map_get_their_own_names_and_oracles(tmp_path):
+    """Two map entries on one map with other start and goal cells: both were named map-0, and the ratio of one read
+    the oracle of the other (mean ratios of 1.9-2.1 on den312d and arena, where they are 1.00-1.003)."""
+    (tmp_path / "m.map").write_text("type octile\nheight 12\nwidth 12\nmap\n" + "\n".join(["." * 12] * 12) + "\n")
+    text = ("worlds:\n"
+            "  - {map: m.map, start: [0, 0], goal: [0, 11], boxes: 0}\n"
+            "  - {map: m.map, start: [0, 0], goal: [11, 11], boxes: 0}\n"
+            "  - {map: m.map, start: [0, 0], goal: [11, 11], boxes: 0}\n"
+            "planners: [{planner: plain-dp}]\n")
+    spec = load_spec(spec_file(tmp_path, text))
+    assert [w.coords["world"] for w in spec.worlds] == ["m-0#1", "m-0#2", "m-0#2"]
+    assert {w.coords["group"] for w in spec.worlds} == {"m"}
+    rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())
+    write_report(spec, rows, tmp_path)
+    with open(tmp_path / "episodes.csv") as file:
+        table = list(csv.DictReader(file))
+    assert len(table) == 4 and all(float(row["ratio"]) == pytest.approx(1.0) for row in table)
+    lengths = {row["world"]: float(row["length"]) for row in table}
+    assert lengths == pytest.approx({"m-0#1": 11.0, "m-0#2": 11.0 * 2 ** 0.5})
+
+
 def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
     spec = spec_file(tmp_path, SMALL)
     out = tmp_path / "out"

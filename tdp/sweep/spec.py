@@ -27,9 +27,11 @@ A spec (every key but ``worlds`` and ``planners`` optional)::
     metrics: [benchmarks.worlds:truth_metrics]   # extra per-episode metrics, module:function
 
 The oracle (exact distances every tick) runs on every world for each stencil in the spec, listed or not: ratios
-are taken against it. An episode's key is a hash of everything that decides its result (the world's recipe and
-file contents, the planner, its whole configuration, the extra metrics), so a rerun skips what is done and a
-changed spec reruns only what changed.
+are taken against it, on the world of the same name: worlds that would share a name but differ (two ``map``
+entries on one map with other cells or boxes, two world files of one name) are told apart by a suffix, ``#1``,
+``#2``, ... in the order of the spec. An episode's key is a hash of everything that decides its result (the
+world's recipe and file contents, the planner, its whole configuration, the extra metrics), so a rerun skips what
+is done and a changed spec reruns only what changed.
 """
 from __future__ import annotations
 
@@ -156,7 +158,8 @@ def _spec(data, path: Path) -> Spec:
     for name in common:
         if name not in CONFIG_FIELDS:
             raise ValueError(f"common: {name!r} is not a NavigatorConfig field ({', '.join(CONFIG_FIELDS)})")
-    worlds = tuple(w for i, entry in enumerate(data["worlds"]) for w in _worlds(entry, f"worlds[{i}]", path.parent))
+    entries = enumerate(data["worlds"])
+    worlds = _named_apart(w for i, entry in entries for w in _worlds(entry, f"worlds[{i}]", path.parent))
     runs, columns = [], dict.fromkeys(k for k in common if k in CONFIG_FIELDS)
     for i, entry in enumerate(data["planners"]):
         planner_runs, named = _runs(entry, common, f"planners[{i}]")
@@ -239,6 +242,24 @@ def _worlds(entry, where: str, folder: Path) -> list[World]:
                    "boxes": boxes, "seed": seed, "blockage": blockage},
                   {"world": f"{file.stem}-{seed}", "group": file.stem, "size": max(grid.shape), "seed": seed})
             for seed in _seeds(entry.get("seeds", 0), where)]
+
+
+def _named_apart(worlds) -> tuple[World, ...]:
+    """The worlds, those that share a name with a different world renamed ``name#k`` (k: 1, 2, ... in order of
+    first appearance): results are keyed by name, and the oracle's length of one must not be read for the other."""
+    worlds = list(worlds)
+    recipes: dict[str, list[dict]] = {}
+    for world in worlds:
+        same = recipes.setdefault(world.coords["world"], [])
+        if world.recipe not in same:
+            same.append(world.recipe)
+    out = []
+    for world in worlds:
+        name, same = world.coords["world"], recipes[world.coords["world"]]
+        if len(same) > 1:
+            world = World(world.recipe, {**world.coords, "world": f"{name}#{same.index(world.recipe) + 1}"})
+        out.append(world)
+    return tuple(out)
 
 
 def _cell(value, where: str) -> tuple:
