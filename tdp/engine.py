@@ -39,11 +39,13 @@ import io
 import logging
 import math
 import os
+import weakref
 
 os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout belongs to its user: no banner
 
 import numpy as np  # noqa: E402
 import taichi as ti  # noqa: E402
+from taichi.lang import impl as _taichi_impl  # noqa: E402
 from taichi.lang.matrix import VectorType  # noqa: E402
 from taichi.types.ndarray_type import NdarrayType  # noqa: E402
 
@@ -684,7 +686,7 @@ class _Layers:
 
     def _array(self, shape: tuple[int, int, int]):
         if self.lanes:
-            return ti.Vector.ndarray(self.lanes, ti.f32, shape)
+            return _freed_when_dropped(ti.Vector.ndarray(self.lanes, ti.f32, shape))
         return ti.ndarray(ti.f32, shape)
 
     @property
@@ -877,6 +879,19 @@ def _edit(cells, occupied) -> tuple[np.ndarray, np.ndarray]:
     """Cells as kernels take them and one occupancy flag per cell."""
     cells = _cells_array(cells)
     return cells, np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+
+
+def _freed_when_dropped(array):
+    """``array`` (a Taichi vector ndarray), its memory handed back to Taichi once Python drops it. Taichi 1.7 frees
+    only scalar ndarrays (taichi-dev/taichi#8763): every engine with node layers leaked its windows, 660 MB per
+    navigator on nav2's warehouse map, so a long sweep's worker grew until it ran out of memory."""
+    def free(handle) -> None:
+        program = _taichi_impl.get_runtime().prog
+        if program is not None:
+            program.delete_ndarray(handle)
+
+    weakref.finalize(array, free, array.arr).atexit = False  # at exit the process hands everything back
+    return array
 
 
 def _device(array: np.ndarray):
