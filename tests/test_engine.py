@@ -17,12 +17,13 @@ def random_map(rows, cols, density, seed):
 
 
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
-def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbourhood, corner_cutting):
+@pytest.mark.parametrize("shape", [(30, 41), (12, 41), (12, 9)])  # windows (17 cells a side) shifted, or clipped
+def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbourhood, corner_cutting, shape):
     rng = np.random.default_rng(3)
-    occupied = random_map(30, 41, 0.2, 1)
+    occupied = random_map(*shape, 0.2, 1)
     nodes = np.array([[0, 0], [5, 6], [15, 20], [29, 40], [14, 39], [28, 2]] * 3)[: LANES + 2]  # two groups
     nodes = nodes + np.arange(len(nodes))[:, None] % 3  # distinct-ish positions, some on obstacles
-    nodes = np.clip(nodes, 0, [29, 40])
+    nodes = np.clip(nodes, 0, np.array(shape) - 1)
     cap = 7.5
     engine = Engine(occupied, (0, 0), nodes=nodes, node_cap=cap, neighbourhood=neighbourhood,
                     corner_cutting=corner_cutting)
