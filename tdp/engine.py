@@ -24,7 +24,8 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of raise wave, then settling | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
-| converge: hand the raise wave's tiles to lowering; equal buffers | ``prepare_lowering``, ``mirror`` | each converge |
+| converge: hand the raise wave's tiles to lowering | ``prepare_lowering`` | after a raise wave (edits since) |
+| converge: equal buffers | ``mirror_serially`` / ``mirror`` | each converge (serial while the layer is small) |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
@@ -338,13 +339,13 @@ def _tile_rules(cell: dict) -> dict:
         border cells reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
 
         Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
-        source and a cell's relaxation never raises it (the caller guarantees that no cell is above its
+        source and a cell's relaxation never raises it (the caller guarantees that no value is below its
         relaxation), so races between threads are benign and the tiles settle to the unique fixed point of eqs. 5
         and 10; the order (keys, directions) only decides how fast.
 
         Lifting (``lifting`` 1), the raise wave of a repair: a lane whose relaxation is above its value (it lost the
         move it was the minimum of) jumps to the cap (every tile the wave reaches is lowered next:
-        ``prepare_lowering``). Values only rise, so races are benign here too; once no tile lifts, no cell is above its
+        ``prepare_lowering``). Values only rise, so races are benign here too; once no tile lifts, no value is below its
         relaxation.
         """
         pending = 0
@@ -542,19 +543,32 @@ class _Kernels:
                     stamps[g, a, b] = ti.select(stamps[g, a, b] >= run[0], run[1], -1)
                     keys[g, a, b] = ti.math.inf
 
+        @ti.func
+        def mirror_row(src: ti.template(), dst: ti.template(), stamps: ti.template(), tick, row):
+            """Copy into ``dst`` the cells of the tiles of row ``row`` (of all groups' rows of tiles) stamped for
+            ``tick`` or later (the only ones settling can have changed since round ``tick``)."""
+            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
+            g, ta = row // stamps.shape[1], row % stamps.shape[1]
+            for tb in range(stamps.shape[2]):
+                if stamps[g, ta, tb] >= tick:
+                    for u, v in ti.ndrange(TILE, TILE):
+                        r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
+                        if r < rows + PAD and c < cols + PAD:
+                            dst[g, r, c] = src[g, r, c]
+
         @kernel
         def mirror(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
-            """Copy into ``dst`` the cells of the tiles stamped for ``tick`` or later (the only ones settling can
-            have changed since round ``tick``), so that both buffers hold the same values."""
-            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-            for row in range(stamps.shape[0] * stamps.shape[1]):  # a row of tiles per thread (a struct-for: per tile)
-                g, ta = row // stamps.shape[1], row % stamps.shape[1]
-                for tb in range(stamps.shape[2]):
-                    if stamps[g, ta, tb] >= tick:
-                        for u, v in ti.ndrange(TILE, TILE):
-                            r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
-                            if r < rows + PAD and c < cols + PAD:
-                                dst[g, r, c] = src[g, r, c]
+            """After settling since round ``tick``: both buffers made equal, a row of tiles per thread (a
+            struct-for would hand out single tiles)."""
+            for row in range(stamps.shape[0] * stamps.shape[1]):
+                mirror_row(src, dst, stamps, tick, row)
+
+        @kernel
+        def mirror_serially(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
+            """``mirror`` on the calling thread (a small layer: cheaper than waking the threads)."""
+            ti.loop_config(serialize=True)
+            for row in range(stamps.shape[0] * stamps.shape[1]):
+                mirror_row(src, dst, stamps, tick, row)
 
         @kernel
         def gather_penalties(pen: Values, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
@@ -682,6 +696,7 @@ class _Layers:
         self.current = 0  # which buffer holds the values
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
         self.woken = 0  # the latest iteration the host stamped tiles for (activate_all, activate_cells)
+        self.raised = False  # an obstacle painted or the source moved since the last reset or raise wave
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -704,8 +719,10 @@ class _Layers:
         return int(self.header[CHANGED])
 
     def move_source(self, source: tuple[int, int]) -> None:
-        """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on."""
+        """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
+        the old one must rise)."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
+        self.raised = True
 
     def activate_all(self) -> None:
         self.stamps.fill(self.tick)
@@ -729,6 +746,7 @@ class _Layers:
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap)
         self.activate_cells(cells)
+        self.raised = self.raised or bool((penalties > 0).any())
 
     def reset(self) -> None:
         """Both buffers back to the initial state of eqs. 5 and 10; only the tiles within the stencil's reach of the
@@ -743,6 +761,7 @@ class _Layers:
         self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                           tick=self.tick)
         self.woken = self.tick
+        self.raised = False
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
         """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
@@ -785,21 +804,26 @@ class _Layers:
         the last converge affect. Returns the rounds done (lifting and lowering), at most ``max_rounds``.
 
         Cells outside the active tiles are at their relaxation (an invariant of iterating, settling and editing:
-        only a change wakes a tile). First the raise wave: in the active tiles and those it wakes, every lane above
+        only a change wakes a tile). First the raise wave: in the active tiles and those it wakes, every lane below
         its relaxation - it depended on a cell that became an obstacle, or on the old source - jumps to the cap,
-        until none is. Then no cell is above its relaxation, so every value is at least the new fixed point's (a
+        until none is. Then no value is below its relaxation, so every value is at least the new fixed point's (a
         chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
         as from the initial state, bit for bit. Only the tiles active at the start or reached by the raise wave are
-        lowered."""
+        lowered. With no obstacle painted and no source moved since the last reset or raise wave, no value can be
+        below its relaxation, and the raise wave is skipped."""
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick
-        lifted = self._rounds(limit, lifting=1)
-        self.kernels.prepare_lowering(stamps=self.stamps, keys=self.keys, run=(first, self.tick))
+        lifted = (0, True)
+        if self.raised:
+            lifted = self._rounds(limit, lifting=1)
+            self.kernels.prepare_lowering(stamps=self.stamps, keys=self.keys, run=(first, self.tick))
+            self.raised = not lifted[1]
+        lowered = (0, False)
         if lifted[1]:
             lowered = self._rounds(limit - lifted[0], lifting=0)
-        else:
-            lowered = (0, False)
-        self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
+        tiles = math.prod(self.stamps.shape)
+        mirror = self.kernels.mirror_serially if tiles <= _serial_limit(self._serial_tiles()) else self.kernels.mirror
+        mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
         if lowered[1]:
             self.deactivate_all()
         else:
@@ -823,7 +847,11 @@ class _Layers:
             self.tick += 1
             return pending == 0
 
-        return self._waves(limit, SERIAL_TILES if self.lanes else SERIAL_SETTLE_TILES, serially, in_parallel)
+        return self._waves(limit, self._serial_tiles(), serially, in_parallel)
+
+    def _serial_tiles(self) -> int:
+        """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""
+        return SERIAL_TILES if self.lanes else SERIAL_SETTLE_TILES
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
