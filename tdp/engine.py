@@ -27,7 +27,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | converge: hand the raise wave's tiles to lowering | ``prepare_lowering`` | after a raise wave (edits since) |
 | converge: equal buffers | ``mirror_serially`` / ``mirror`` | each converge (serial while the layer is small) |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
-| map edits, goal moves | ``paint``, ``stamp_cells`` | each edit |
+| map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
 
 Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
@@ -585,12 +585,24 @@ class _Kernels:
                         value = grid[r + PAD, c + PAD]
                     store(pen, g, i, j, lane, value)
 
+        @ti.func
+        def stamp_near(stamps: ti.template(), g, a, b, tick):
+            """Activate for iteration ``tick`` the tiles of group g that have its layer cell (a, b) within reach (a
+            layer sees a cell up to PAD outside it)."""
+            for da in ti.static(range(-PAD, PAD + 1, PAD)):
+                for db in ti.static(range(-PAD, PAD + 1, PAD)):
+                    ta, tb = (a + da) // TILE, (b + db) // TILE
+                    if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
+                        stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
+
         @kernel
-        def paint(src: Values, dst: Values, pen: Values, origins: Origins, cells: Cells,
-                  penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32):
-            """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them; a newly
-            occupied cell takes its obstacle value, the cap, at once in both buffers."""
+        def paint(src: Values, dst: Values, pen: Values, stamps: Stamps, origins: Origins, cells: Cells,
+                  penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32, tick: ti.i32):
+            """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
+            activate the tiles near them for iteration ``tick``; a newly occupied cell takes its obstacle value, the
+            cap, at once in both buffers."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
             for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
@@ -599,21 +611,20 @@ class _Kernels:
                         if penalties[k] > 0:
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
+                    if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
+                        stamp_near(stamps, g, a, b, tick)
 
         @kernel
         def stamp_cells(stamps: Stamps, pen: Values, origins: Origins, cells: Cells, tick: ti.i32):
             """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
-            (a layer, of ``pen``'s shape, sees a cell up to PAD outside it)."""
+            (see ``stamp_near``; ``pen`` gives the layers' shape)."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            ti.loop_config(serialize=True)  # a few cells: cheaper than waking the threads
             for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        for da in ti.static(range(-PAD, PAD + 1, PAD)):
-                            for db in ti.static(range(-PAD, PAD + 1, PAD)):
-                                ta, tb = (a + da) // TILE, (b + db) // TILE
-                                if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                                    stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
+                        stamp_near(stamps, g, a, b, tick)
 
         @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
@@ -743,9 +754,9 @@ class _Layers:
 
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
-        self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, origins=self.origins, cells=cells,
-                           penalties=penalties, cap=self.cap)
-        self.activate_cells(cells)
+        self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, origins=self.origins,
+                           cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
+        self.woken = self.tick
         self.raised = self.raised or bool((penalties > 0).any())
 
     def reset(self) -> None:
