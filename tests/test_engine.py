@@ -17,7 +17,7 @@ def random_map(rows, cols, density, seed):
 
 
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
-@pytest.mark.parametrize("shape", [(30, 41), (12, 41), (12, 9)])  # windows (17 cells a side) shifted, or clipped
+@pytest.mark.parametrize("shape", [(30, 41), (12, 41), (12, 9)])  # maps wider and narrower than the 17-cell windows
 def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbourhood, corner_cutting, shape):
     rng = np.random.default_rng(3)
     occupied = random_map(*shape, 0.2, 1)
