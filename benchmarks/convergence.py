@@ -2,9 +2,10 @@
 
     python -m benchmarks.convergence [--quick]
 
-Maps: random (20 % obstacles) of growing size, each with goals at a corner, the centre and a random cell; the
-MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
-world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. The 16-neighbour graph is
+Maps: random (20 % obstacles) of growing size, and with 30 % obstacles at 512² and 1024², each with goals at a
+corner, the centre and a random cell; the MovingAI maps in ../shared/data with several scenario goals each (skipped
+when absent); the ROS maps (turtlebot3's world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m)
+with random goals. The 16-neighbour graph is
 built once and timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are
 timed in turn, warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the
 solve takes under 5 ms), scikit-fmm's whole-field distance (when installed; a different, continuous distance,
@@ -34,6 +35,8 @@ SHARED = ROOT.parent / "shared" / "data"
 NAV2 = ROOT / "benchmarks" / "data" / "nav2_maps"
 ROBOT_RADIUS_M = 0.2
 SIZES, QUICK_SIZES = [256, 512, 1024, 2048], [64, 128]
+#: Random maps with 30 % obstacles as well (routes wind far more than at 20 %, and settling needs more rounds).
+DENSE_SIZES, QUICK_DENSE_SIZES, DENSE = [512, 1024], [64], 0.3
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
 LARGE = 65536  # maps from this size on get the repair cases and the worst-case target (4096 with --quick)
@@ -46,9 +49,10 @@ except ImportError:  # an optional reference: pip install scikit-fmm
     skfmm = None
 
 
-def random_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
-    """A random map with 20 % obstacles and its goals: a corner, the centre, a random free cell."""
-    occupied = np.random.default_rng(size).random((size, size)) < 0.2
+def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A random map with ``density`` obstacles and its goals: a corner, the centre, a random free cell. Named
+    ``random {size}² {place}`` at 20 %, with the density in the name otherwise."""
+    occupied = np.random.default_rng(size).random((size, size)) < density
     free = np.argwhere(~occupied)
     goals = {"corner": (0, 0), "centre": (size // 2, size // 2),
              "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
@@ -56,7 +60,8 @@ def random_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
     for place, goal in goals.items():
         grid = occupied.copy()
         grid[goal] = False
-        cases.append((f"random {size}² {place}", grid, goal))
+        dense = "" if density == 0.2 else f"{round(100 * density)} % "
+        cases.append((f"random {size}² {dense}{place}", grid, goal))
     return cases
 
 
@@ -227,9 +232,13 @@ def main() -> None:
     parser = quick_parser(__doc__)
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
-    sizes, maps = (QUICK_SIZES, QUICK_MAPS) if args.quick else (SIZES, MAPS)
+    if args.quick:
+        sizes, dense_sizes, maps = QUICK_SIZES, QUICK_DENSE_SIZES, QUICK_MAPS
+    else:
+        sizes, dense_sizes, maps = SIZES, DENSE_SIZES, MAPS
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
+    cases += [case for size in dense_sizes for case in random_cases(size, DENSE)]
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
         cases += ros_cases()
