@@ -64,9 +64,14 @@ SERIAL_TILES = 512
 #: faster than one thread on the 2-core VM (random 1024², 20 % obstacles, from scratch: 155-189 ms on one thread
 #: against 194-246 ms with parallel rounds beyond 512 tiles; 256²: 12-18 against 17-24 ms).
 SERIAL_SETTLE_TILES = 16384
-#: Width, in cells of distance, of the buckets in which converge() settles tiles: a round settles the active tiles
-#: whose key (the smallest value that woke them) is within SETTLE_BAND of the lowest key (measured, RESULTS §2).
-SETTLE_BAND = 256.0
+#: Width, in cells of distance, of the buckets in which converge() settles the goal layer's tiles: a round settles
+#: the active tiles whose key (the smallest value that woke them) is within SETTLE_BAND of the lowest key. Narrow
+#: buckets settle a tile fewer times where routes wind (random 512², 30 % obstacles: 1.4x scipy's Dijkstra against
+#: 2.1x with 256) and cost nothing elsewhere: the goal layer's rounds are cheap (RESULTS §2).
+SETTLE_BAND = 32.0
+#: The same for packed node layers: their rounds are parallel launches over every lane's fronts, and a key is the
+#: lowest of 32 lanes' values; 32-cell buckets took 470 rounds on the warehouse map (setup 0.9-1.1 s, 0.6 s with these).
+PACKED_SETTLE_BAND = 256.0
 #: Side of an active tile, in cells: a tile is relaxed only when its inputs changed in the previous iteration.
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
@@ -218,7 +223,7 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
 
     return dict(broadcast=broadcast, component=component, differs=differs, lowest=lowest, blocked=blocked, store=store,
                 updated=updated, successor_move=successor_move, window_cell=window_cell, width=width,
-                first_column=0 if lanes == 0 else 1)
+                first_column=0 if lanes == 0 else 1, band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
 
 
 def _given(argument) -> bool:
@@ -243,16 +248,16 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, ti
 
 
 @ti.func
-def _settling_bound(stamps: ti.template(), keys: ti.template(), tick):
+def _settling_bound(stamps: ti.template(), keys: ti.template(), tick, band):
     """The largest key a tile may have to be settled in round ``tick``: the lowest finite key among the active tiles
-    plus SETTLE_BAND (inf when none is finite), as delta-stepping's buckets."""
+    plus ``band`` (inf when none is finite), as delta-stepping's buckets."""
     lowest = ti.math.inf
     for g in range(stamps.shape[0]):
         for a in range(stamps.shape[1]):
             for b in range(stamps.shape[2]):
                 if stamps[g, a, b] >= tick:
                     ti.atomic_min(lowest, keys[g, a, b])
-    return lowest + SETTLE_BAND
+    return lowest + band
 
 
 @ti.func
@@ -280,7 +285,9 @@ def _oriented(index, count, sweep, axis):
 def _sweep(header: ti.template(), rows, cols, tick):
     """The sweep number of round ``tick``, ``_oriented``'s directions starting (at a tick that is a multiple of 4) with
     the one that runs away from the source."""
-    return tick + ti.select(header[SOURCE_ROW] - PAD >= rows // 2, 1, 0) + ti.select(header[SOURCE_COL] - PAD >= cols // 2, 2, 0)
+    down = ti.select(header[SOURCE_ROW] - PAD >= rows // 2, 1, 0)
+    right = ti.select(header[SOURCE_COL] - PAD >= cols // 2, 2, 0)
+    return tick + down + right
 
 
 def _tile_rules(cell: dict) -> dict:
@@ -289,7 +296,7 @@ def _tile_rules(cell: dict) -> dict:
     updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
     blocked = cell["blocked"]
     component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
-    first_column = cell["first_column"]
+    first_column, band = cell["first_column"], cell["band"]
 
     @ti.func
     def relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
@@ -389,7 +396,7 @@ def _tile_rules(cell: dict) -> dict:
         pending = 0
         bound = ti.math.inf
         if not lifting:
-            bound = _settling_bound(stamps, keys, tick)
+            bound = _settling_bound(stamps, keys, tick, band)
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
         if ti.static(serial):
@@ -405,6 +412,25 @@ def _tile_rules(cell: dict) -> dict:
                 pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, sweep, bound,
                                        lifting)
         return pending
+
+    @ti.func
+    def lowering_key(values: ti.template(), header: ti.template(), cap, g, ta, tb):
+        """The key of tile (g, ta, tb) for lowering after a raise wave: 0 if it holds the source (a node freed in the
+        same edits as an obstacle elsewhere holds the cap, and so may all around it), else the smallest value below
+        the cap among its cells and those within the stencil's reach (no cell of the tile can fall below it), inf
+        when every one holds the cap: then each of its cells is at its relaxation and the tile can stay inactive
+        until a change reaches it."""
+        key = ti.math.inf
+        top, left = ta * TILE, tb * TILE  # padded coordinates of the reach around the tile start here
+        bottom = ti.min(top + TILE + 2 * PAD, values.shape[1])
+        right = ti.min(left + TILE + 2 * PAD, values.shape[2])
+        if top + PAD <= header[SOURCE_ROW] < top + PAD + TILE and left + PAD <= header[SOURCE_COL] < left + PAD + TILE:
+            key = 0.0
+        for i, j in ti.ndrange((top, bottom), (left, right)):
+            value = lowest(values[g, i, j])
+            if value < cap:
+                key = ti.min(key, value)
+        return key
 
     @ti.func
     def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
@@ -423,7 +449,7 @@ def _tile_rules(cell: dict) -> dict:
                         value = component(values[g, a + PAD, b + PAD], lane)
                     out[step, k, column] = value
 
-    return dict(relax_all=relax_all, settle_all=settle_all, sample_into=sample_into)
+    return dict(relax_all=relax_all, settle_all=settle_all, sample_into=sample_into, lowering_key=lowering_key)
 
 
 class _Kernels:
@@ -443,6 +469,7 @@ class _Kernels:
         cell = _cell_rules(lanes, moves)
         tile = _tile_rules(cell)
         relax_all, settle_all, sample_into = tile["relax_all"], tile["settle_all"], tile["sample_into"]
+        lowering_key = tile["lowering_key"]
         broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
         successor_move, width = cell["successor_move"], cell["width"]
         Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
@@ -534,14 +561,21 @@ class _Kernels:
                         stamps[g, a, b] = tick
 
         @kernel
-        def prepare_lowering(stamps: Stamps, keys: Keys, run: ti.types.vector(2, ti.i32)):
-            """After the raise wave: activate for round run[1] every tile active since round run[0] (active before
-            it, or reached by it), keys unknown (inf); deactivate the rest."""
-            ti.loop_config(serialize=True)  # one store per tile: cheaper than waking the threads
+        def prepare_lowering(values: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
+                             run: ti.types.vector(2, ti.i32)):
+            """After the raise wave: hand lowering the tiles active since round run[0] (active before it, or reached
+            by it) that can fall, active for round run[1] with their key, and deactivate the rest (``lowering_key``).
+            Without keys every reached tile was due at once, and the first round swept the whole lifted region in
+            one direction before the buckets ordered anything (maze, a wall across the busiest corridor: a repair
+            cost more than a restart)."""
+            ti.loop_config(serialize=True)  # the raise wave visited these tiles already: cheaper than waking threads
             for g in range(stamps.shape[0]):
                 for a, b in ti.ndrange(stamps.shape[1], stamps.shape[2]):
-                    stamps[g, a, b] = ti.select(stamps[g, a, b] >= run[0], run[1], -1)
-                    keys[g, a, b] = ti.math.inf
+                    key = ti.math.inf
+                    if stamps[g, a, b] >= run[0]:
+                        key = lowering_key(values, header, cap, g, a, b)
+                    stamps[g, a, b] = ti.select(key < ti.math.inf, run[1], -1)
+                    keys[g, a, b] = key
 
         @ti.func
         def mirror_row(src: ti.template(), dst: ti.template(), stamps: ti.template(), tick, row):
@@ -827,7 +861,8 @@ class _Layers:
         lifted = (0, True)
         if self.raised:
             lifted = self._rounds(limit, lifting=1)
-            self.kernels.prepare_lowering(stamps=self.stamps, keys=self.keys, run=(first, self.tick))
+            self.kernels.prepare_lowering(values=self.values, stamps=self.stamps, keys=self.keys, header=self.header,
+                                          cap=self.cap, run=(first, self.tick))
             self.raised = not lifted[1]
         lowered = (0, False)
         if lifted[1]:
@@ -1027,11 +1062,11 @@ class Engine:
         (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
 
         Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
-        of SETTLE_BAND and alternating diagonal directions) and wakes the neighbours its border changes reach; it
-        ends when no tile changes. The fixed point of eqs. 5 and 10 is unique, so the result equals what synchronous
-        iterations reach from the initial state, bit for bit. After a goal move the goal layer starts again from
-        the initial state (every value depended on the old goal). While few tiles are active, rounds run one after
-        another in a single launch.
+        of SETTLE_BAND, PACKED_SETTLE_BAND for node layers, and alternating diagonal directions) and wakes the
+        neighbours its border changes reach; it ends when no tile changes. The fixed point of eqs. 5 and 10 is
+        unique, so the result equals what synchronous iterations reach from the initial state, bit for bit. After a
+        goal move the goal layer starts again from the initial state (every value depended on the old goal). While
+        few tiles are active, rounds run one after another in a single launch.
         """
         if self._goal_moved:
             self._goal.reset()

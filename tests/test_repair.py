@@ -101,6 +101,40 @@ def test_a_pocket_cut_off_rises_to_inf_and_reopening_restores_it(monkeypatch, se
     np.testing.assert_array_equal(engine.goal_distances(), before)
 
 
+def test_a_goal_moved_into_a_cut_off_pocket_takes_the_pocket_with_it():
+    """After the wall cut the pocket off (its values inf), the goal moves deep inside it, where every value around
+    the new source is inf: the pocket gets finite values and the rest of the map rises to inf."""
+    occupied = np.zeros((96, 96), bool)
+    occupied[40, 56:] = True
+    occupied[40:, 56] = True
+    engine = Engine(occupied, (0, 0))
+    engine.converge()
+    assert np.isinf(engine.goal_distances()[70:, 70:]).all()
+    engine.set_goal((80, 80))
+    engine.converge()
+    assert np.isfinite(engine.goal_distances()[41:, 57:]).all()
+    assert np.isinf(engine.goal_distances()[:40, :56]).all()
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
+def test_a_node_freed_with_an_obstacle_elsewhere_gets_its_layer_back():
+    """A box covers the only node (its whole layer holds the cap); then, in one batch of edits, the box leaves and
+    an obstacle appears elsewhere, so a raise wave runs: lowering must start at the node, where every value around
+    holds the cap."""
+    occupied = np.zeros((40, 40), bool)
+    options = dict(nodes=np.array([[20, 20]]), node_cap=12.5)
+    engine = Engine(occupied, (0, 0), **options)
+    engine.converge()
+    box = np.array([(20 + i, 20 + j) for i in range(-1, 2) for j in range(-1, 2)])
+    engine.set_cells(box, np.ones(len(box), bool))
+    engine.converge()
+    assert (engine.node_distances(0) == np.float32(12.5)).all()
+    engine.set_cells(np.vstack([box, [(30, 30)]]), np.r_[np.zeros(len(box), bool), True])
+    engine.converge()
+    assert engine.node_distances(0)[20, 20] == 0.0
+    assert_equal_to_a_fresh_converge(engine, options)
+
+
 def test_distance_field_repairs_after_set_occupied_and_set_goal():
     """The public face: DistanceField.converge() after edits equals a fresh field's converge()."""
     occupied = np.random.default_rng(5).random((50, 60)) < 0.2
