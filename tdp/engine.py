@@ -371,14 +371,15 @@ def _tile_rules(cell: dict) -> dict:
                         r, c = ta * TILE + u, tb * TILE + v
                         if r < rows and c < cols and not blocked(pen[g, r + PAD, c + PAD]):
                             old = values[g, r + PAD, c + PAD]
-                            new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
-                            if lifting:
-                                new = ti.select(new > old, broadcast(cap), old)
-                            if differs(new, old):
-                                values[g, r + PAD, c + PAD] = new
-                                changed_here = 1
-                                if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                    _wake_around(stamps, keys, g, ta, tb, u, v, tick + 1, lowest(new))
+                            if not lifting or lowest(old) < cap:  # at the cap: nothing left to lift
+                                new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
+                                if lifting:
+                                    new = ti.select(new > old, broadcast(cap), old)
+                                if differs(new, old):
+                                    values[g, r + PAD, c + PAD] = new
+                                    changed_here = 1
+                                    if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                                        _wake_around(stamps, keys, g, ta, tb, u, v, tick + 1, lowest(new))
                     passes += 1
                 keys[g, ta, tb] = ti.math.inf
                 if passes > 1:
