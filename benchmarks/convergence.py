@@ -15,10 +15,12 @@ Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged
 of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, and a goal move; each
 timed as edit + ``converge()`` (the edit undone, untimed, between repeats), checked bit for bit against a fresh
 field's converge() on the edited map, and set against that field's from-scratch converge(), the two timed in turn
-(the ratio again the median of each pair's).
+(the ratio again the median of each pair's; as many pairs as fill about REPAIR_PAIRS_S seconds of from-scratch
+converges, from the repeats up to MAX_REPAIR_PAIRS).
 """
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 
@@ -42,6 +44,10 @@ GOALS_PER_MAP = 3
 LARGE = 65536  # maps from this size on get the repair cases and the worst-case target (4096 with --quick)
 FAST_S, FAST_REPEATS = 0.005, 5  # a reference solve under 5 ms gets 5 times the repeats: its timings are noisier
 WALL = 16
+#: Repairs are timed in pairs with a from-scratch converge until the from-scratch side adds up to about this many
+#: seconds (at most MAX_REPAIR_PAIRS pairs, at least the repeats): on a map that converges in 10-30 ms five pairs
+#: left a goal move, which is a restart by construction, anywhere in 0.85-1.25x.
+REPAIR_PAIRS_S, MAX_REPAIR_PAIRS = 0.5, 25
 
 try:
     import skfmm
@@ -141,7 +147,8 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: i
               "fmm_ms": None if fmm_s is None else fmm_s * 1e3,
               "fmm_ratio": None if fmm_s is None else converge_s / fmm_s}
     if rows * cols >= repair_cells:
-        result["repairs"] = [measure_repair(field, kind, reference, repeats) for kind in ("box", "wall", "goal")]
+        pairs = min(max(repeats, math.ceil(REPAIR_PAIRS_S / converge_s)), MAX_REPAIR_PAIRS)
+        result["repairs"] = [measure_repair(field, kind, reference, pairs) for kind in ("box", "wall", "goal")]
     return result
 
 
