@@ -565,17 +565,18 @@ class _Kernels:
         def prepare_lowering(values: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
                              run: ti.types.vector(2, ti.i32)):
             """After the raise wave: hand lowering the tiles active since round run[0] (active before it, or reached
-            by it) that can fall, active for round run[1] with their key, and deactivate the rest (``lowering_key``).
-            Without keys every reached tile was due at once, and the first round swept the whole lifted region in
-            one direction before the buckets ordered anything (maze, a wall across the busiest corridor: a repair
-            cost more than a restart)."""
+            by it) that can fall, active for round run[1] with their key (``lowering_key``). A reached tile that
+            cannot fall is stamped run[1] - 1: inactive from now on, but still mirrored at the end (the raise wave
+            may have lifted it). Without keys every reached tile was due at once, and the first round swept the
+            whole lifted region in one direction before the buckets ordered anything (maze, a wall across the
+            busiest corridor: a repair cost more than a restart)."""
             ti.loop_config(serialize=True)  # the raise wave visited these tiles already: cheaper than waking threads
             for g in range(stamps.shape[0]):
                 for a, b in ti.ndrange(stamps.shape[1], stamps.shape[2]):
                     key = ti.math.inf
                     if stamps[g, a, b] >= run[0]:
                         key = lowering_key(values, header, cap, g, a, b)
-                    stamps[g, a, b] = ti.select(key < ti.math.inf, run[1], -1)
+                        stamps[g, a, b] = ti.select(key < ti.math.inf, run[1], run[1] - 1)
                     keys[g, a, b] = key
 
         @ti.func
