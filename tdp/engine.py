@@ -23,9 +23,9 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 |---|---|---|
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds of raise wave, then settling | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
-| converge: hand the raise wave's tiles to lowering | ``prepare_lowering`` | after a raise wave (edits since) |
-| converge: equal buffers | ``mirror_serially`` / ``mirror`` | each converge (serial while the layer is small) |
+| converge: rounds of raise wave, then lowering | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
+| converge: hand the raise wave's tiles to lowering | ``settle_serially`` or ``prepare_lowering`` | when it ends |
+| converge: equal buffers | in ``settle_serially`` (small layer), or ``mirror`` | each converge |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
@@ -351,9 +351,9 @@ def _tile_rules(cell: dict) -> dict:
         and 10; the order (keys, directions) only decides how fast.
 
         Lifting (``lifting`` 1), the raise wave of a repair: a lane whose relaxation is above its value (it lost the
-        move it was the minimum of) jumps to the cap (every tile the wave reaches is lowered next:
-        ``prepare_lowering``). Values only rise, so races are benign here too; once no tile lifts, no value is below its
-        relaxation.
+        move it was the minimum of) jumps to the cap (the tiles the wave reaches are lowered next:
+        ``key_for_lowering``); a cell already at the cap has nothing left to lift and is skipped. Values only rise,
+        so races are benign here too; once no tile lifts, no value is below its relaxation.
         """
         pending = 0
         if stamps[g, ta, tb] >= tick:
@@ -530,20 +530,34 @@ class _Kernels:
             return settle_all(values, pen, stamps, keys, header, cap, run[0], run[1], False)
 
         @kernel
-        def settle_serially(values: Values, pen: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
-                            run: ti.types.vector(4, ti.i32), result: Ints):
-            """Up to ``rounds`` rounds of settling on the calling thread (run = (tick, rounds, limit)), until one
-            changes no tile or more than ``limit`` tiles are active. result[0] = the rounds done, result[1] = the
-            tiles the last of them changed (0: settled)."""
-            tick, rounds, limit, lifting = run[0], run[1], run[2], run[3]
-            done, touched = 0, 1
-            while done < rounds and touched > 0:
+        def settle_serially(values: Values, dst: Values, pen: Values, stamps: Stamps, keys: Keys, header: Ints,
+                            cap: ti.f32, run: ti.types.vector(6, ti.i32), result: Ints):
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, mirror)): up to
+            ``rounds`` rounds until settled, or until more than ``limit`` tiles are active. A raise wave that ends
+            hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles active since round
+            ``since``); with ``mirror`` (a small layer), unless stopped by ``limit``, the tiles stamped since
+            ``since`` are then copied into ``dst``. result = (rounds done, still lifting, settled, mirrored)."""
+            tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
+            done, settled, busy = 0, 0, 0
+            while done < rounds and settled == 0:
                 if _active_tiles(stamps, tick + done) > limit:
+                    busy = 1
                     break
                 touched = settle_all(values, pen, stamps, keys, header, cap, tick + done, lifting, True)
                 done += 1
-            result[0] = done
-            result[1] = touched
+                if touched == 0:
+                    if lifting:
+                        for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
+                            key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b)
+                        lifting = 0
+                    else:
+                        settled = 1
+            mirrored = 0
+            if run[5] and not busy:  # inside an if: the loop stays on this thread
+                for row in range(stamps.shape[0] * stamps.shape[1]):
+                    mirror_row(values, dst, stamps, since, row)
+                mirrored = 1
+            result[0], result[1], result[2], result[3] = done, lifting, settled, mirrored
 
         @kernel
         def seed(src: Values, dst: Values, pen: Values, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -561,23 +575,28 @@ class _Kernels:
                         b = ti.min(ti.max(j - PAD + db, 0), cols - 1) // TILE
                         stamps[g, a, b] = tick
 
+        @ti.func
+        def key_for_lowering(values: ti.template(), stamps: ti.template(), keys: ti.template(),
+                             header: ti.template(), cap, since, tick, g, a, b):
+            """After a raise wave: tile (g, a, b), if active since round ``since`` (active before the wave, or
+            reached by it), is handed to lowering - active for round ``tick`` with its key (``lowering_key``) if it
+            can fall, else stamped ``tick`` - 1: inactive from now on, but still mirrored at the end (the wave may
+            have lifted it). Without keys every reached tile was due at once, and the first round swept the whole
+            lifted region in one direction before the buckets ordered anything (maze, a wall across the busiest
+            corridor: a repair cost more than a restart)."""
+            key = ti.math.inf
+            if stamps[g, a, b] >= since:
+                key = lowering_key(values, header, cap, g, a, b)
+                stamps[g, a, b] = ti.select(key < ti.math.inf, tick, tick - 1)
+            keys[g, a, b] = key
+
         @kernel
         def prepare_lowering(values: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
                              run: ti.types.vector(2, ti.i32)):
-            """After the raise wave: hand lowering the tiles active since round run[0] (active before it, or reached
-            by it) that can fall, active for round run[1] with their key (``lowering_key``). A reached tile that
-            cannot fall is stamped run[1] - 1: inactive from now on, but still mirrored at the end (the raise wave
-            may have lifted it). Without keys every reached tile was due at once, and the first round swept the
-            whole lifted region in one direction before the buckets ordered anything (maze, a wall across the
-            busiest corridor: a repair cost more than a restart)."""
-            ti.loop_config(serialize=True)  # the raise wave visited these tiles already: cheaper than waking threads
-            for g in range(stamps.shape[0]):
-                for a, b in ti.ndrange(stamps.shape[1], stamps.shape[2]):
-                    key = ti.math.inf
-                    if stamps[g, a, b] >= run[0]:
-                        key = lowering_key(values, header, cap, g, a, b)
-                        stamps[g, a, b] = ti.select(key < ti.math.inf, run[1], run[1] - 1)
-                    keys[g, a, b] = key
+            """``key_for_lowering`` for every tile (run = (since, tick)), shared out among the threads: after a raise
+            wave that ended in a parallel round."""
+            for g, a, b in stamps:
+                key_for_lowering(values, stamps, keys, header, cap, run[0], run[1], g, a, b)
 
         @ti.func
         def mirror_row(src: ti.template(), dst: ti.template(), stamps: ti.template(), tick, row):
@@ -596,13 +615,6 @@ class _Kernels:
         def mirror(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
             """After settling since round ``tick``: both buffers made equal, a row of tiles per thread (a
             struct-for would hand out single tiles)."""
-            for row in range(stamps.shape[0] * stamps.shape[1]):
-                mirror_row(src, dst, stamps, tick, row)
-
-        @kernel
-        def mirror_serially(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
-            """``mirror`` on the calling thread (a small layer: cheaper than waking the threads)."""
-            ti.loop_config(serialize=True)
             for row in range(stamps.shape[0] * stamps.shape[1]):
                 mirror_row(src, dst, stamps, tick, row)
 
@@ -860,42 +872,38 @@ class _Layers:
         below its relaxation, and the raise wave is skipped."""
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick
-        lifted = (0, True)
-        if self.raised:
-            lifted = self._rounds(limit, lifting=1)
-            self.kernels.prepare_lowering(values=self.values, stamps=self.stamps, keys=self.keys, header=self.header,
-                                          cap=self.cap, run=(first, self.tick))
-            self.raised = not lifted[1]
-        lowered = (0, False)
-        if lifted[1]:
-            lowered = self._rounds(limit - lifted[0], lifting=0)
-        tiles = math.prod(self.stamps.shape)
-        mirror = self.kernels.mirror_serially if tiles <= _serial_limit(self._serial_tiles()) else self.kernels.mirror
-        mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
-        if lowered[1]:
-            self.deactivate_all()
-        else:
-            self.activate_all()
-        return lifted[0] + lowered[0]
-
-    def _rounds(self, limit: int, lifting: int) -> tuple[int, bool]:
-        """Up to ``limit`` rounds of settling (``lifting``: of the raise wave) until one leaves no tile pending;
-        returns (rounds, finished)."""
-        result = np.zeros(2, np.int32)
+        small = math.prod(self.stamps.shape) <= _serial_limit(self._serial_tiles())
+        state = {"lifting": int(self.raised), "mirrored": False}
+        result = np.zeros(4, np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
 
-        def serially(first: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
-            self.kernels.settle_serially(**arrays, run=(self.tick, rounds, serial_limit, lifting), result=result)
+        def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
+            self.kernels.settle_serially(**arrays, dst=self.dst, result=result,
+                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, int(small)))
             self.tick += int(result[0])
-            return int(result[0]), int(result[1]) == 0
+            state["lifting"], state["mirrored"] = int(result[1]), bool(result[3])
+            return int(result[0]), bool(result[2])
 
-        def in_parallel(first: int) -> bool:
-            pending = self.kernels.settle(**arrays, run=(self.tick, lifting))
+        def in_parallel(done: int) -> bool:
+            pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
             self.tick += 1
-            return pending == 0
+            if pending or not state["lifting"]:
+                return pending == 0
+            self.kernels.prepare_lowering(values=self.values, stamps=self.stamps, keys=self.keys, header=self.header,
+                                          cap=self.cap, run=(first, self.tick))
+            state["lifting"] = 0
+            return False
 
-        return self._waves(limit, self._serial_tiles(), serially, in_parallel)
+        rounds, settled = self._waves(limit, self._serial_tiles(), serially, in_parallel)
+        self.raised = bool(state["lifting"])
+        if not state["mirrored"]:
+            self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
+        if settled:
+            self.deactivate_all()
+        else:
+            self.activate_all()
+        return rounds
 
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""

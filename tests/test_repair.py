@@ -61,9 +61,19 @@ def assert_equal_to_a_fresh_converge(engine: Engine, options: dict) -> None:
                                       err_msg=f"node layer {node}")
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+def launch_rounds(monkeypatch, serially: bool) -> None:
+    """Every round on the calling thread (as on small maps), or every round a parallel launch (as on big ones)."""
+    monkeypatch.setattr(engine_module, "SERIAL_TILES", 10**6 if serially else 0)
+    monkeypatch.setattr(engine_module, "SERIAL_SETTLE_TILES", 10**6 if serially else 0)
+
+
+@pytest.mark.parametrize("serially", [True, False])
+@settings(max_examples=60, deadline=None,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans())
-def test_repair_equals_a_fresh_converge_bit_for_bit(sequence, neighbourhood, corner_cutting, with_nodes):
+def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, sequence, neighbourhood, corner_cutting,
+                                                    with_nodes):
+    launch_rounds(monkeypatch, serially)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
     occupied = rng.random((rows, cols)) < density
@@ -82,11 +92,11 @@ def test_repair_equals_a_fresh_converge_bit_for_bit(sequence, neighbourhood, cor
     assert_equal_to_a_fresh_converge(engine, options)
 
 
-@pytest.mark.parametrize("serial_tiles", [0, 10**6])  # parallel rounds, serial rounds
-def test_a_pocket_cut_off_rises_to_inf_and_reopening_restores_it(monkeypatch, serial_tiles):
+@pytest.mark.parametrize("serially", [True, False])
+def test_a_pocket_cut_off_rises_to_inf_and_reopening_restores_it(monkeypatch, serially):
     """A wall closing a 40 x 40 pocket on a 96 x 96 map: the pocket's values rise to inf (not counting up for ever)
     and come back exactly when the wall opens; cells outside keep their values."""
-    monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
+    launch_rounds(monkeypatch, serially)
     occupied = np.zeros((96, 96), bool)
     engine = Engine(occupied, (0, 0))
     engine.converge()
@@ -119,10 +129,12 @@ def test_a_goal_moved_into_a_cut_off_pocket_takes_the_pocket_with_it():
     assert_equal_to_a_fresh_converge(engine, {})
 
 
-def test_a_node_freed_with_an_obstacle_elsewhere_gets_its_layer_back():
+@pytest.mark.parametrize("serially", [True, False])
+def test_a_node_freed_with_an_obstacle_elsewhere_gets_its_layer_back(monkeypatch, serially):
     """A box covers the only node (its whole layer holds the cap); then, in one batch of edits, the box leaves and
     an obstacle appears elsewhere, so a raise wave runs: lowering must start at the node, where every value around
     holds the cap."""
+    launch_rounds(monkeypatch, serially)
     occupied = np.zeros((40, 40), bool)
     options = dict(nodes=np.array([[20, 20]]), node_cap=12.5)
     engine = Engine(occupied, (0, 0), **options)
@@ -137,9 +149,11 @@ def test_a_node_freed_with_an_obstacle_elsewhere_gets_its_layer_back():
     assert_equal_to_a_fresh_converge(engine, options)
 
 
-def test_a_pocket_cut_off_stays_at_the_cap_through_the_iterations_after():
+@pytest.mark.parametrize("serially", [True, False])
+def test_a_pocket_cut_off_stays_at_the_cap_through_the_iterations_after(monkeypatch, serially):
     """The raise wave lifts the pocket to the cap and lowering leaves it there: both buffers must hold the cap, or
     the iterations after an edit elsewhere swap the stale values back in (and a repair then never ends)."""
+    launch_rounds(monkeypatch, serially)
     engine = Engine(np.zeros((96, 96), bool), (0, 0))
     engine.converge()
     wall = np.array([(40, c) for c in range(56, 96)] + [(r, 56) for r in range(40, 96)])
