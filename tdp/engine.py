@@ -867,9 +867,11 @@ class _Layers:
         its relaxation - it depended on a cell that became an obstacle, or on the old source - jumps to the cap,
         until none is. Then no value is below its relaxation, so every value is at least the new fixed point's (a
         chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
-        as from the initial state, bit for bit. Only the tiles active at the start or reached by the raise wave are
-        lowered. With no obstacle painted and no source moved since the last reset or raise wave, no value can be
-        below its relaxation, and the raise wave is skipped."""
+        as from the initial state, bit for bit. Lowering starts from the tiles active at the start or reached by the
+        raise wave that can fall, in order of their keys (``key_for_lowering``). A small layer's converge is one
+        launch (``settle_serially``: raise wave, hand-over, lowering, mirror). With no obstacle painted and no source
+        moved since the last reset or raise wave, no value can be below its relaxation, and the raise wave is
+        skipped."""
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick
         small = math.prod(self.stamps.shape) <= _serial_limit(self._serial_tiles())
