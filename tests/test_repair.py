@@ -166,6 +166,27 @@ def test_a_pocket_cut_off_stays_at_the_cap_through_the_iterations_after(monkeypa
     assert_equal_to_a_fresh_converge(engine, {})
 
 
+@pytest.mark.parametrize("serially", [True, False])
+def test_a_repair_cut_short_by_max_rounds_goes_on_in_later_calls(monkeypatch, serially):
+    """A wall cuts the map in two and converge() gets one round at a time: the raise wave, the hand-over and the
+    lowering go on across calls and iterations (an unfinished wave keeps its flag and leaves every tile active), and
+    the end equals a fresh converge."""
+    launch_rounds(monkeypatch, serially)
+    occupied = np.random.default_rng(3).random((48, 56)) < 0.2
+    occupied[0, 0] = False
+    options = dict(nodes=np.array([[10, 10], [30, 40]]), node_cap=15.5)
+    engine = Engine(occupied, (0, 0), **options)
+    engine.converge()
+    engine.set_cells(np.array([(24, c) for c in range(56)]), np.ones(56, bool))
+    for _ in range(3):
+        assert engine.converge(max_rounds=1) == 1
+    engine.step(2)
+    engine.converge(max_rounds=2)
+    engine.converge()
+    assert np.isinf(engine.goal_distances()[25:]).all()
+    assert_equal_to_a_fresh_converge(engine, options)
+
+
 def test_distance_field_repairs_after_set_occupied_and_set_goal():
     """The public face: DistanceField.converge() after edits equals a fresh field's converge()."""
     occupied = np.random.default_rng(5).random((50, 60)) < 0.2
