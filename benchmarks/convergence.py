@@ -213,7 +213,7 @@ def figure(results: list[dict], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, max(4.2, 0.16 * len(results))))
     names = [r["map"] for r in results]
     y = np.arange(len(results))
     left.barh(y, [r["ratio"] for r in results], color="tab:blue")
@@ -221,17 +221,18 @@ def figure(results: list[dict], path: Path) -> None:
     left.set_yticks(y, names, fontsize=6)
     left.invert_yaxis()
     left.set_xlabel("from-scratch converge() / scipy Dijkstra (lower is faster)")
-    repaired = [(r["map"], q) for r in results for q in r.get("repairs", [])]
+    repaired = [r for r in results if r.get("repairs")]
     colours = {"box": "tab:green", "wall": "tab:orange", "goal": "tab:red"}
-    for k, (name, q) in enumerate(repaired):
-        right.barh(k, q["ratio"], color=colours[q["kind"]], label=q["kind"] if k < 3 else None)
-    right.set_yticks(range(len(repaired)), [f"{n} {q['kind']}" for n, q in repaired], fontsize=5)
+    for k, kind in enumerate(colours):  # one row per map, its three changes side by side
+        ratios = [next(q["ratio"] for q in r["repairs"] if q["kind"] == kind) for r in repaired]
+        right.barh(np.arange(len(repaired)) + (k - 1) * 0.27, ratios, 0.27, color=colours[kind], label=kind)
+    right.set_yticks(range(len(repaired)), [r["map"] for r in repaired], fontsize=6)
     right.invert_yaxis()
     right.set_xscale("log")
     right.axvline(0.1, color="k", lw=0.8, ls="--")
     right.axvline(1.0, color="k", lw=0.8)
     right.set_xlabel("repair / from-scratch converge() (log)")
-    right.legend(fontsize=7)
+    right.legend(fontsize=7, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0))
     save_figure(fig, path)
 
 
