@@ -68,7 +68,7 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
 
 
 @pytest.mark.parametrize("serially", [True, False])
-@settings(max_examples=60, deadline=None,
+@settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans())
 def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, sequence, neighbourhood, corner_cutting,
