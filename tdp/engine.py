@@ -371,7 +371,10 @@ def _tile_rules(cell: dict) -> dict:
                         r, c = ta * TILE + u, tb * TILE + v
                         if r < rows and c < cols and not blocked(pen[g, r + PAD, c + PAD]):
                             old = values[g, r + PAD, c + PAD]
-                            if not lifting or lowest(old) < cap:  # at the cap: nothing left to lift
+                            due = 1
+                            if lifting:  # a cell at the cap has nothing left to lift (a reduction only here)
+                                due = ti.select(lowest(old) < cap, 1, 0)
+                            if due:
                                 new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
                                 if lifting:
                                     new = ti.select(new > old, broadcast(cap), old)
