@@ -5,11 +5,11 @@
 Maps: random (20 % obstacles) of growing size, and with 30 % obstacles at 512² and 1024², each with goals at a
 corner, the centre and a random cell; the MovingAI maps in ../shared/data with several scenario goals each (skipped
 when absent); the ROS maps (turtlebot3's world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m)
-with random goals. The 16-neighbour graph is
-built once and timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are
-timed in turn, warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the
-solve takes under 5 ms), scikit-fmm's whole-field distance (when installed; a different, continuous distance,
-timed only) as a warm median, and the field is checked equal to Dijkstra's.
+with random goals. The 16-neighbour graph is built once and timed apart; Dijkstra's solve and a from-scratch
+converge() (``reset()`` then ``converge()``) are timed in turn, warm, in the same process (their ratio is the median
+of each pair's; 5 times the repeats where the solve takes under 5 ms), scikit-fmm's whole-field distance (when
+installed; a different, continuous distance, timed only) as a warm median, and the field is checked equal to
+Dijkstra's.
 
 Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle
 of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, and a goal move; each
