@@ -115,13 +115,17 @@ def from_scratch(field: tdp.DistanceField) -> None:
 
 
 def fmm_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
-    """scikit-fmm's whole-field distance from the goal around the obstacles (masked), or None when absent."""
+    """scikit-fmm's whole-field distance from the goal around the obstacles (masked), or None when absent or when
+    it has no front to march (a goal walled in on its four sides: skfmm raises "no zero contour")."""
     if skfmm is None:
         return None
     phi = np.ones(occupied.shape)
     phi[goal] = -1.0
     phi = np.ma.MaskedArray(phi, mask=np.array(occupied))
-    return median_time(lambda: skfmm.distance(phi), repeats)
+    try:
+        return median_time(lambda: skfmm.distance(phi), repeats)
+    except ValueError:
+        return None
 
 
 def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: int) -> dict:
