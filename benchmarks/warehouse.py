@@ -2,22 +2,25 @@
 
     python -m benchmarks.warehouse [--quick]
 
-nav2's warehouse map (benchmarks/data/nav2_maps, inflated by 0.2 m) with boxes shuttling over free ground
-(:func:`tdp.random_worlds.boxes_on_map`), start and goal random cells of the largest free region, one world per
-seed. Per world, accelerating nodes (25, the default) and plain DP at K = 4, and accelerating nodes with a time
-budget of 1 ms per tick instead of a fixed K:
+nav2's warehouse map (benchmarks/data/nav2_maps, inflated by 0.2 m), start and goal random cells of the largest free
+region, two worlds per seed (:func:`tdp.random_worlds.boxes_on_map`): six boxes shuttling over free ground all the
+time ("boxes"), and one box appearing in a narrow place of the robot's route a third of the way along and staying
+there ("appear"; run for twice as many ticks so that the robot meets it). Per world, accelerating nodes (25, the
+default) and plain DP at K = 4, and accelerating nodes with a time budget of 1 ms per tick instead of a fixed K:
 
 * setup: ``Navigator(...)`` (node placement, windows) plus ``setup()`` (every layer converged), warm: a first
   navigator of the same kind compiled every kernel in this process;
 * tick: the planner's time per tick (DP iterations, monitor, search; handing over the map's changes is reported
-  apart), median, 95th percentile and maximum over the run's ticks (TICKS at most; fewer when the robot arrives);
+  apart), median, 95th percentile and maximum over the run's ticks (TICKS at most, twice that in "appear" worlds;
+  fewer when the robot arrives);
 * side by side, what recomputing instead of iterating would cost: a from-scratch ``converge()`` of the goal field
   on the same map, and scipy's Dijkstra solve on the 16-neighbour graph.
 
---quick: nav2's depot map (307 x 604), one world, 30 ticks.
+--quick: nav2's depot map (307 x 604), one seed, 30 ticks.
 """
 from __future__ import annotations
 
+import dataclasses
 import time
 from pathlib import Path
 
@@ -38,7 +41,8 @@ PLANNERS = [("accelerating", {}), ("plain DP", {"accelerating": False}),
 
 
 def worlds(quick: bool) -> list[tdp.Scenario]:
-    """Boxes on the inflated map, one world per seed, start and goal in its largest free region."""
+    """Per seed, shuttling boxes and a box appearing on the route, on the inflated map; start and goal in its
+    largest free region."""
     grid = tdp.load_map(NAV2 / ("depot.yaml" if quick else "warehouse.yaml"))
     grid = grid.inflate(ROBOT_RADIUS_M / grid.resolution)
     free = largest_free_region(grid.occupied)
@@ -46,6 +50,8 @@ def worlds(quick: bool) -> list[tdp.Scenario]:
     for seed in SEEDS[:1] if quick else SEEDS:
         start, goal = (tuple(int(v) for v in free[k]) for k in np.random.default_rng(seed).choice(len(free), 2))
         scenarios.append(boxes_on_map(grid, start, goal, boxes=2 if quick else BOXES, seed=seed))
+        appear = boxes_on_map(grid, start, goal, boxes=0, seed=seed, blockage=True)
+        scenarios.append(dataclasses.replace(appear, name=f"appear-{seed}"))
     return scenarios
 
 
@@ -68,7 +74,8 @@ def run(scenario: tdp.Scenario, options: dict, ticks: int) -> dict:
     return {"construct_ms": (built - began) * 1e3, "converge_ms": (done - built) * 1e3,
             "setup_ms": (done - began) * 1e3, "rounds": rounds, "nodes": len(planner.nodes), "ticks": record["ticks"],
             "tick_median_ms": tick["median"], "tick_p95_ms": tick["p95"], "tick_max_ms": tick["max"],
-            "update_median_ms": update["median"], "collisions": record["collisions"], "hits": record["hits"]}
+            "update_median_ms": update["median"], "collisions": record["collisions"], "hits": record["hits"],
+            "reached": record["reached"]}
 
 
 def recompute_ms(scenario: tdp.Scenario) -> dict:
@@ -90,7 +97,7 @@ def figure(rows: list[dict], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(10, 4.5))
+    fig, ax = plt.subplots(figsize=(14, 4.5))
     labels = [f"{r['world']}\n{r['planner'].replace(', ', chr(10))}" for r in rows]
     x = np.arange(len(rows))
     for k, (key, name) in enumerate([("tick_median_ms", "tick median"), ("tick_p95_ms", "tick p95"),
@@ -98,8 +105,8 @@ def figure(rows: list[dict], path: Path) -> None:
         ax.bar(x + (k - 1.5) * 0.2, [r[key] for r in rows], 0.2, label=name)
     ax.axhline(1.0, color="k", lw=0.8, ls="--")
     ax.axhline(20.0, color="k", lw=0.8, ls=":")
-    ax.set_title("nav2 warehouse, 6 moving boxes: planner time per tick (lines: the 1 ms median and 20 ms max "
-                 "targets)", fontsize=9)
+    ax.set_title("nav2 warehouse, 6 shuttling boxes (boxes-6-*) or a box appearing on the route (appear-*): planner "
+                 "time per tick (lines: the 1 ms median and 20 ms max targets)", fontsize=9)
     ax.set_xticks(x, labels, fontsize=6)
     ax.set_yscale("log")
     ax.set_ylabel("ms")
@@ -117,17 +124,18 @@ def main() -> None:
     for scenario in scenarios:
         reference = recompute_ms(scenario)
         for name, options in PLANNERS:
-            rows.append({"world": scenario.name, "planner": name, **run(scenario, options, ticks), **reference})
+            limit = ticks if scenario.change_tick is None else 2 * ticks
+            rows.append({"world": scenario.name, "planner": name, **run(scenario, options, limit), **reference})
             r = rows[-1]
             print(f"  {scenario.name}, {name}: setup {r['setup_ms']:.0f} ms, tick median {r['tick_median_ms']:.2f} "
                   f"ms, max {r['tick_max_ms']:.1f} ms (goal field from scratch {r['recompute_ms']:.0f} ms)",
                   flush=True)
     print_table(["world", "planner", "nodes", "setup ms", "of which converge", "ticks", "tick median ms", "tick p95 ms",
-                 "tick max ms", "map hand-over ms", "from scratch ms", "Dijkstra ms", "coll."],
+                 "tick max ms", "map hand-over ms", "from scratch ms", "Dijkstra ms", "coll.", "arrived"],
                 [[r["world"], r["planner"], str(r["nodes"]), f"{r['setup_ms']:.0f}", f"{r['converge_ms']:.0f}",
                   str(r["ticks"]), f"{r['tick_median_ms']:.2f}", f"{r['tick_p95_ms']:.2f}", f"{r['tick_max_ms']:.1f}",
                   f"{r['update_median_ms']:.2f}", f"{r['recompute_ms']:.0f}", f"{r['dijkstra_ms']:.0f}",
-                  str(r["collisions"])] for r in rows])
+                  str(r["collisions"]), "yes" if r["reached"] else "no"] for r in rows])
     save_results("warehouse-quick" if args.quick else "warehouse", {"rows": rows}, lambda png: figure(rows, png))
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 from collections import deque
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 
 class BlockageMonitor:
@@ -35,20 +36,34 @@ class BlockageMonitor:
     def observe(self, pairs: np.ndarray) -> list[tuple[int, int]]:
         """Record one iteration's pair distances (n x n; inf where a node is inactive); return the pairs (a < b)
         that became blocked at this iteration."""
-        pairs = np.array(pairs, np.float64)
-        self._history.append(pairs)
+        return [pair for _, pair in self.observe_iterations(np.asarray(pairs)[None])]
+
+    def observe_iterations(self, pairs: np.ndarray) -> list[tuple[int, tuple[int, int]]]:
+        """Record k iterations' pair distances at once ((k, n, n), oldest first), as k calls of :meth:`observe`
+        would; return (index in ``pairs``, (a, b)) for each pair that became blocked, in order."""
+        new = np.asarray(pairs, np.float64)
         if self._blocked is None:
-            self._blocked = np.zeros(pairs.shape, bool)
-        if len(self._history) <= self.window:
+            self._blocked = np.zeros(new.shape[1:], bool)
+        history = np.concatenate([np.stack(self._history), new]) if self._history else new
+        self._history.extend(new)
+        now = np.arange(max(0, self.window - len(history) + len(new)), len(new)) + len(history) - len(new)
+        if not len(now):
             return []
-        before = self._history[0]
-        watched = np.isfinite(np.stack(self._history)).all(axis=0) & (before < self.dmax_q)
-        rise = np.subtract(pairs, before, out=np.zeros_like(pairs), where=watched)
+        before = history[now - self.window]
+        watched = before < self.dmax_q
+        finite = np.isfinite(history)
+        if not finite.all():  # a window is history[now - J .. now]
+            watched &= sliding_window_view(finite, self.window + 1, axis=0)[now - self.window].all(axis=-1)
+        rise = np.subtract(history[now], before, out=np.zeros_like(before), where=watched)
         blocked = watched & (rise >= self.rise)
-        fresh = blocked & ~self._blocked
-        self._blocked = blocked | blocked.T
-        a, b = np.nonzero(np.triu(fresh, k=1))
-        return [(int(i), int(j)) for i, j in zip(a, b)]
+        both_ways = blocked | blocked.transpose(0, 2, 1)
+        fresh = blocked & ~np.concatenate([self._blocked[None], both_ways[:-1]])
+        self._blocked = both_ways[-1]
+        if not fresh.any():
+            return []
+        index, a, b = np.nonzero(np.triu(fresh, k=1))
+        first = len(new) - len(now)
+        return [(int(k) + first, (int(i), int(j))) for k, i, j in zip(index, a, b)]
 
 
 def segment_near_path(a: np.ndarray, b: np.ndarray, path: np.ndarray, reach: float) -> bool:

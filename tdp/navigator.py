@@ -18,7 +18,7 @@ from .contract import Detection, Mode, TickResult
 from .engine import Engine
 from .field import cells_from, check_cap
 from .grid import GridMap
-from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, place_nodes
+from .nodes import PLACEMENTS, NodeGraph, choose_subgoal, pair_distances, place_nodes
 from .predict import MotionPredictor
 from .search import uniform_cost_search
 from .stencil import check_neighbourhood, escape_move, legal_moves, moves
@@ -340,11 +340,16 @@ class Navigator:
         began = time.perf_counter()
         k = self.config.updates_per_move if budget_s is None else 1
         done, dp_s, monitor_s, new_pairs = 0, 0.0, 0.0, []
+        # The monitor reads the nodes' cells; R and G too only when this tick reads the graph anyway (following a
+        # backup, or searching): a layer kind with nothing to iterate then launches no kernel in most ticks.
+        reads_graph = self.state != "dp"
+        cells = self._graph_cells() if reads_graph else self.nodes
         while True:
             dp_began = time.perf_counter()
             if self.config.accelerating:
-                samples = self.engine.advance(k, self._graph_cells())
-                self._readings = (self._reading_state(), samples[-1])
+                samples = self.engine.advance(k, cells)
+                if reads_graph:
+                    self._readings = (self._reading_state(), samples[-1])
             else:
                 self.engine.step(k)
             monitor_began = time.perf_counter()
@@ -367,12 +372,10 @@ class Navigator:
     def _observe(self, samples: np.ndarray) -> list[tuple[int, tuple[int, int]]]:
         """Feed the monitor one iteration's pair distances after another; the pairs newly blocked, with their
         iteration."""
-        found = []
         first = self.engine.iterations - len(samples) + 1
-        for step, sample in enumerate(samples):
-            pairs = NodeGraph(sample, self.dmax_q, self._active_nodes(first + step)).pairs
-            found += [(first + step, pair) for pair in self.monitor.observe(pairs)]
-        return found
+        active = self._active_from[None, :] <= first + np.arange(len(samples))[:, None]
+        found = self.monitor.observe_iterations(pair_distances(samples, active))
+        return [(first + step, pair) for step, pair in found]
 
     def _graph_cells(self) -> np.ndarray:
         """The cells the node graph reads every layer at: the nodes, then R, then G."""

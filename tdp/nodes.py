@@ -84,6 +84,18 @@ def _nearest_free(occupied: np.ndarray, cell: tuple[int, int], radius: float,
     return int(rows.flat[k]), int(cols.flat[k])
 
 
+def pair_distances(samples: np.ndarray, active: np.ndarray) -> np.ndarray:
+    """The pair weights D(Qa, Qb) = max(layer_b[Qa], layer_a[Qb]) of eq. 14 (cells), inf where either node is
+    inactive, from ``samples`` (rows: the nodes' cells first; columns: the goal layer, then each node's, 1 + n) and
+    ``active`` (n,) bool; or from k iterations' at once, (k, rows, 1 + n) and (k, n), into (k, n, n)."""
+    n = samples.shape[-1] - 1
+    rows = samples[..., :n, 1:].astype(np.float64)
+    pairs = np.maximum(rows, np.swapaxes(rows, -1, -2))
+    inactive = ~np.asarray(active, bool)
+    pairs[inactive[..., :, None] | inactive[..., None, :]] = np.inf
+    return pairs
+
+
 class NodeGraph:
     """The graph of eq. 14 over the nodes Q plus the robot R and the goal G, from the layers' values.
 
@@ -104,8 +116,7 @@ class NodeGraph:
         self.n = n
         self.dmax_q = float(dmax_q)
         self.active = np.asarray(active, bool)
-        node_rows = samples[:n, 1:].astype(np.float64)
-        self.pairs = np.maximum(node_rows, node_rows.T)
+        self.pairs = pair_distances(samples, self.active)
         self.robot_readings = samples[n, 1:].astype(np.float64)  # layer_j[R] before any edge is dropped
         self.robot = self.robot_readings.copy()
         self.goal = samples[n + 1, 1:].astype(np.float64)
@@ -115,8 +126,6 @@ class NodeGraph:
             self.robot[self._cut_off(self.robot, blocked)] = np.inf
             self.goal[self._cut_off(self.goal, blocked)] = np.inf
         inactive = ~self.active
-        self.pairs[inactive, :] = np.inf
-        self.pairs[:, inactive] = np.inf
         self.robot[inactive] = np.inf
         self.goal[inactive] = np.inf
 

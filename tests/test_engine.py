@@ -128,7 +128,9 @@ def test_a_converged_engine_with_no_change_relaxes_nothing():
 @pytest.mark.parametrize("serial_tiles", [0, 12, 10**6])  # always parallel launches, mixed, always one launch
 def test_advance_equals_single_parallel_steps_and_samples(monkeypatch, serial_tiles):
     """advance(k) gives exactly what k parallel single iterations, each followed by sample(), give, through map
-    edits and goal moves, whether its iterations run in one serial launch, in parallel launches or mixed."""
+    edits and goal moves, whether its iterations run in one serial launch, in parallel launches or mixed, and while
+    one kind of layer or both are idle (the small node windows settle first; k = 40 lets everything settle),
+    and after a converge that moved the goal while both were idle."""
     rng = np.random.default_rng(serial_tiles)
     occupied = random_map(40, 50, 0.2, 1)
     nodes = np.argwhere(~occupied)[::97]
@@ -136,14 +138,17 @@ def test_advance_equals_single_parallel_steps_and_samples(monkeypatch, serial_ti
     stepped = Engine(occupied, (0, 0), nodes=nodes, node_cap=9.0)
     goal_only = Engine(occupied, (0, 0))
     cells = np.vstack([nodes, [[5, 5]]])
-    for tick, k in enumerate((1, 4, 3, 4, 2, 4, 4, 1, 4)):
-        if tick % 3 == 2:
+    for tick, k in enumerate((1, 4, 3, 4, 2, 4, 4, 1, 4, 40, 4, 4, 40, 4, 4, 4)):
+        if tick in (2, 5, 8, 11):
             edited = np.argwhere(rng.random(occupied.shape) < 0.01)
             for engine in (fused, stepped, goal_only):
                 engine.set_cells(edited, bool(tick % 2))
-        if tick == 4:
+        if tick in (4, 14):
             for engine in (fused, stepped, goal_only):
-                engine.set_goal((39, 49))
+                engine.set_goal((39, 49) if tick == 4 else (0, 0))
+        if tick == 14:  # after an idle tick: values change in converge alone
+            for engine in (fused, stepped, goal_only):
+                engine.converge()
         monkeypatch.setattr(engine_module, "SERIAL_TILES", serial_tiles)
         samples = fused.advance(k, cells)
         goal_samples = goal_only.advance(k, cells)

@@ -176,6 +176,39 @@ def test_monitor_ignores_inactive_nodes():
     assert monitor.observe(np.array([[np.inf, np.inf], [np.inf, np.inf]])) == []
 
 
+def monitor_reference(readings: list[np.ndarray], dmax_q: float, window: int, rise: float) -> list:
+    """The blockage rule of ARCHITECTURE §5.4 written out pair by pair: (iteration, (a, b)) as first reported."""
+    def blocked(i, a, b):
+        span = [readings[t][a, b] for t in range(i - window, i + 1)] if i >= window else [math.inf]
+        return all(map(math.isfinite, span)) and span[0] < dmax_q and span[-1] - span[0] >= rise
+
+    n = readings[0].shape[0]
+    return [(i, (a, b)) for i in range(len(readings)) for a in range(n) for b in range(a + 1, n)
+            if blocked(i, a, b) and not (i > 0 and (blocked(i - 1, a, b) or blocked(i - 1, b, a)))]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(2, 4), st.integers(1, 4), st.data())
+def test_monitor_reports_the_same_fed_at_once_or_iteration_by_iteration(n, window, data):
+    """observe_iterations (k iterations in one call, as the navigator feeds a tick's samples) follows the rule
+    exactly, however the iterations are split into calls; so does observe, one at a time."""
+    steps = data.draw(st.integers(1, 20))
+    values = st.sampled_from([0.0, 3.0, 5.0, 9.0, 12.0, 19.5, 25.0, math.inf])
+    readings = [np.array(data.draw(st.lists(values, min_size=n * n, max_size=n * n))).reshape(n, n)
+                for _ in range(steps)]
+    readings = [np.maximum(r, r.T) for r in readings]
+    expected = monitor_reference(readings, 20.0, window, 4.0)
+    chunked, done = BlockageMonitor(20.0, window, 4.0), 0
+    found = []
+    while done < steps:
+        k = data.draw(st.integers(1, steps - done))
+        found += [(done + i, pair) for i, pair in chunked.observe_iterations(np.stack(readings[done:done + k]))]
+        done += k
+    single = BlockageMonitor(20.0, window, 4.0)
+    assert found == expected
+    assert [(i, p) for i, r in enumerate(readings) for p in single.observe(r)] == expected
+
+
 def test_segment_geometry():
     assert segment_near_path((0, 0), (0, 10), np.array([[3, 5]]), 3.0)
     assert not segment_near_path((0, 0), (0, 10), np.array([[3, 5], [0, 14]]), 2.9)
