@@ -18,10 +18,14 @@ import sys
 import numpy as np
 
 from benchmarks.common import median_time, print_table, quick_parser, save_results
+from tdp.engine import LANES
 
 CASES = [(size, nodes) for size in (100, 256, 512, 1024, 2048) for nodes in (0, 25, 64, 256)]
 QUICK_CASES = [(100, 25), (256, 16)]  # a smoke run
-BYTES_PER_CELL_LAYER = 12  # read the value and the penalty, write the value: the floor of a streaming update
+#: The floor of a streaming update, bytes per cell-layer: read the value and the penalty, write the value. The goal
+#: layer's penalty is a float; a node window's is a 32-bit word per cell for all LANES lanes (a bit each).
+GOAL_BYTES_PER_CELL_LAYER = 12
+NODE_BYTES_PER_CELL_LAYER = 8 + 4 / LANES
 
 
 def copy_bandwidth() -> float:
@@ -63,7 +67,8 @@ def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
     numpy_s = median_time(reference.step, max(2, repeats // 4), warmup=1)
     engine.converge()
     steady_s = median_time(steady_step, repeats, warmup=3)
-    floor_s = BYTES_PER_CELL_LAYER * cell_layers / bandwidth
+    floor_s = (GOAL_BYTES_PER_CELL_LAYER * size * size
+               + NODE_BYTES_PER_CELL_LAYER * (cell_layers - size * size)) / bandwidth
     return {"size": size, "nodes": len(lattice.cells), "window": side, "cell_layers": cell_layers,
             "taichi_ms": taichi_s * 1e3, "numpy_ms": numpy_s * 1e3, "floor_ms": floor_s * 1e3,
             "steady_ms": steady_s * 1e3, "speedup_vs_numpy": numpy_s / taichi_s,

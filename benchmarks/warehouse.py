@@ -110,7 +110,7 @@ def figure(rows: list[dict], path: Path) -> None:
     ax.set_xticks(x, labels, fontsize=6)
     ax.set_yscale("log")
     ax.set_ylabel("ms")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     save_figure(fig, path)
 
 
