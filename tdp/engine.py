@@ -9,8 +9,9 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   g*LANES + l; unused lanes are walled in and stay at the cap;
 * an obstacle holds the cap (eq. 5), written into both buffers the moment a cell becomes occupied, so a move
   into it yields at least the cap and never wins the minimum; the cells a move crosses are checked in a penalty
-  array of the same shape as each layer (0 free, inf blocked, padding blocked): a move's candidate is
-  ``D[Z] + |V - Z| + pen[crossed cells]``.
+  array of the same cells as each layer (padding blocked): a move's candidate is ``D[Z] + |V - Z| + pen[crossed
+  cells]``, pen 0 free and inf blocked. The goal layer's is float32; a node window's is one int32 word per cell, a
+  bit per lane (1 blocked), so that the penalties of 32 lanes take the memory of one (``crossing``).
 
 Kernels come from a factory (``_kernels_for``), one set per compile-time spec - lanes (0 for the goal layer, LANES
 for node windows), neighbourhood, corner rule - closed over as constants; each kind of layer (``_Layers``) knows its
@@ -22,6 +23,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | work | kernel | launch |
 |---|---|---|
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
+| k iterations of an idle kind | none: a kept ``sample`` (``_Layers.iterate``) | nothing to relax |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of raise wave, then lowering | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
 | converge: hand the raise wave's tiles to lowering | ``settle_serially`` or ``prepare_lowering`` | when it ends |
@@ -270,7 +272,8 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
     return dict(broadcast=broadcast, component=component, differs=differs, lowest=lowest, blocked=blocked, store=store,
-                store_penalty=store_penalty, blocked_lanes=blocked_lanes, updated=updated, successor_move=successor_move, window_cell=window_cell, width=width,
+                store_penalty=store_penalty, blocked_lanes=blocked_lanes, updated=updated,
+                successor_move=successor_move, window_cell=window_cell, width=width,
                 first_column=0 if lanes == 0 else 1, band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
 
 
