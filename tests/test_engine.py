@@ -19,9 +19,12 @@ def random_map(rows, cols, density, seed):
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
 @pytest.mark.parametrize("shape", [(30, 41), (12, 41), (12, 9)])  # maps wider and narrower than the 17-cell windows
 def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbourhood, corner_cutting, shape):
+    """Node windows (LANES + 2 nodes: a full group, every lane's penalty bit in use, and a second group) equal goal
+    layers of the full grid with the node as source, through iterations and map edits, after a converge, and in
+    the successors their traces follow."""
     rng = np.random.default_rng(3)
     occupied = random_map(*shape, 0.2, 1)
-    nodes = np.array([[0, 0], [5, 6], [15, 20], [29, 40], [14, 39], [28, 2]] * 3)[: LANES + 2]  # two groups
+    nodes = np.array([[0, 0], [5, 6], [15, 20], [29, 40], [14, 39], [28, 2]] * 6)[: LANES + 2]  # two groups
     nodes = nodes + np.arange(len(nodes))[:, None] % 3  # distinct-ish positions, some on obstacles
     nodes = np.clip(nodes, 0, np.array(shape) - 1)
     cap = 7.5
@@ -43,6 +46,15 @@ def test_windowed_node_layers_equal_full_grid_layers_through_map_changes(neighbo
         for j, layer in enumerate(full):
             np.testing.assert_array_equal(engine.node_distances(j), layer.goal_distances(),
                                           err_msg=f"node {j} at iteration {iteration}")
+    engine.set_cells(np.argwhere(rng.random(occupied.shape) < 0.05), True)
+    engine.converge()
+    start = tuple(np.array(shape) // 2)
+    for j, (r, c) in enumerate(nodes):
+        layer = Engine(engine.occupied, (r, c), goal_cap=cap, neighbourhood=neighbourhood,
+                       corner_cutting=corner_cutting)
+        layer.converge()
+        np.testing.assert_array_equal(engine.node_distances(j), layer.goal_distances(), err_msg=f"node {j}")
+        assert engine.trace(1 + j, start, 20) == layer.trace(0, start, 20), f"node {j}"
 
 
 def test_node_on_an_obstacle_stays_at_the_cap_and_sample_reads_every_layer():
