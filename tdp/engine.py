@@ -1217,7 +1217,8 @@ class Engine:
     def advance(self, k: int, cells: np.ndarray) -> np.ndarray:
         """Run k synchronous iterations of every layer and return every layer at ``cells`` after each: a float32
         (k, n, 1 + nodes) array (as :meth:`sample` after each :meth:`step`), in one kernel launch per kind of
-        layer while few tiles are active."""
+        layer while few tiles are active, and none for a kind with nothing to iterate that was sampled at the same
+        ``cells`` before (pass the same cells from tick to tick to benefit)."""
         return self._advance(k, _cells_array(cells))
 
     def _advance(self, k: int, cells: np.ndarray) -> np.ndarray:
