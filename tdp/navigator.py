@@ -370,10 +370,10 @@ class Navigator:
         return new_pairs, dp_s, monitor_s
 
     def _observe(self, samples: np.ndarray) -> list[tuple[int, tuple[int, int]]]:
-        """Feed the monitor one iteration's pair distances after another; the pairs newly blocked, with their
-        iteration."""
+        """Feed the monitor the pair distances of the iterations ``samples`` holds, in one call; the pairs newly
+        blocked, with their iteration."""
         first = self.engine.iterations - len(samples) + 1
-        active = self._active_from[None, :] <= first + np.arange(len(samples))[:, None]
+        active = self._active_nodes(first + np.arange(len(samples))[:, None])  # (iterations, nodes)
         found = self.monitor.observe_iterations(pair_distances(samples, active))
         return [(first + step, pair) for step, pair in found]
 
@@ -381,9 +381,9 @@ class Navigator:
         """The cells the node graph reads every layer at: the nodes, then R, then G."""
         return np.vstack([self.nodes, [self.robot], [self.goal]])
 
-    def _active_nodes(self, iteration: int | None = None) -> np.ndarray:
-        """Nodes active at DP iteration ``iteration`` (default: the last): not covered by an obstacle, and settled
-        since they were last uncovered (ARCHITECTURE §5.1)."""
+    def _active_nodes(self, iteration: int | np.ndarray | None = None) -> np.ndarray:
+        """Nodes active at DP iteration ``iteration`` (default: the last; a column of iterations gives a row per
+        iteration): not covered by an obstacle, and settled since they were last uncovered (ARCHITECTURE §5.1)."""
         return self._active_from <= (self.engine.iterations if iteration is None else iteration)
 
     def _graph(self, without_blocked: bool = False) -> NodeGraph:
