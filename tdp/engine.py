@@ -78,9 +78,11 @@ PACKED_SETTLE_BAND = 256.0
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
-#: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, and the
-#: source (padded layer coordinates), the cell held at 0.
-CHANGED, SOURCE_ROW, SOURCE_COL = 0, 1, 2
+#: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
+#: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
+#: none): the cell whose value and successor chain a focused repair settles first and stops at.
+CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL = 0, 1, 2, 3, 4
+_NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -299,16 +301,53 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, ti
 
 
 @ti.func
-def _settling_bound(stamps: ti.template(), keys: ti.template(), tick, band):
-    """The largest key a tile may have to be settled in round ``tick``: the lowest finite key among the active tiles
-    plus ``band`` (inf when none is finite), as delta-stepping's buckets."""
+def _focus_distance(header: ti.template(), a, b):
+    """Euclidean distance (cells) from the focus cell to the nearest cell of tile (a, b); 0 without a focus. A lower
+    bound on the way from the focus to any cell of the tile (every move costs its Euclidean length)."""
+    out = 0.0
+    if header[FOCUS_ROW] >= 0:
+        row, col = header[FOCUS_ROW] - PAD, header[FOCUS_COL] - PAD
+        dr = ti.max(0, a * TILE - row, row - (a * TILE + TILE - 1))
+        dc = ti.max(0, b * TILE - col, col - (b * TILE + TILE - 1))
+        out = ti.sqrt(ti.f32(dr * dr + dc * dc))
+    return out
+
+
+@ti.func
+def _priority(keys: ti.template(), header: ti.template(), g, a, b):
+    """The order in which tile (g, a, b) is settled: its key (no cell of it can fall below key + 1) plus its
+    distance from the focus, as D* Lite's keys (an unfocused converge orders by key alone)."""
+    return keys[g, a, b] + _focus_distance(header, a, b)
+
+
+@ti.func
+def _settling_bound(stamps: ti.template(), keys: ti.template(), header: ti.template(), tick, band):
+    """The largest priority a tile may have to be settled in round ``tick``: the lowest finite priority among the
+    active tiles plus ``band`` (inf when none is finite), as delta-stepping's buckets."""
     lowest = ti.math.inf
     for g in range(stamps.shape[0]):
         for a in range(stamps.shape[1]):
             for b in range(stamps.shape[2]):
                 if stamps[g, a, b] >= tick:
-                    ti.atomic_min(lowest, keys[g, a, b])
+                    ti.atomic_min(lowest, _priority(keys, header, g, a, b))
     return lowest + band
+
+
+@ti.func
+def _round_scan(stamps: ti.template(), keys: ti.template(), header: ti.template(), tick):
+    """On the calling thread, for round ``tick``: (active tiles, the lowest finite priority among them, how many of
+    them have no key yet: due at once)."""
+    count, lowest, unkeyed = 0, ti.math.inf, 0
+    for g in range(stamps.shape[0]):
+        for a in range(stamps.shape[1]):
+            for b in range(stamps.shape[2]):
+                if stamps[g, a, b] >= tick:
+                    count += 1
+                    if keys[g, a, b] < ti.math.inf:
+                        lowest = ti.min(lowest, _priority(keys, header, g, a, b))
+                    else:
+                        unkeyed += 1
+    return ti.Vector([ti.f32(count), lowest, ti.f32(unkeyed)])
 
 
 @ti.func
@@ -343,11 +382,12 @@ def _sweep(header: ti.template(), rows, cols, tick):
 
 def _tile_rules(cell: dict) -> dict:
     """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
-    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``header`` (HEADER_FIELDS)."""
+    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``keys``, ``header`` (CHANGED,
+    SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL)."""
     updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
     blocked = cell["blocked"]
     component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
-    first_column, band = cell["first_column"], cell["band"]
+    first_column = cell["first_column"]
 
     @ti.func
     def relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
@@ -408,7 +448,7 @@ def _tile_rules(cell: dict) -> dict:
         """
         pending = 0
         if stamps[g, ta, tb] >= tick:
-            if keys[g, ta, tb] > bound and keys[g, ta, tb] < ti.math.inf:
+            if keys[g, ta, tb] < ti.math.inf and _priority(keys, header, g, ta, tb) > bound:
                 stamps[g, ta, tb] = tick + 1
                 pending = 1
             else:
@@ -444,14 +484,11 @@ def _tile_rules(cell: dict) -> dict:
 
     @ti.func
     def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                   header: ti.template(), cap, tick, lifting, serial: ti.template()):
-        """One round of ``settle_tile`` over the tiles due (``_settling_bound``; every active tile when ``lifting``),
-        visited in the round's diagonal direction (``_oriented``): a parallel loop at a kernel's top level,
-        ``serial`` loops inside a loop. Returns the number of tiles that changed or wait (0: settled)."""
+                   header: ti.template(), cap, tick, lifting, bound, serial: ti.template()):
+        """One round of ``settle_tile`` over the tiles due (priority at most ``bound``; every active tile when
+        ``lifting``), visited in the round's diagonal direction (``_oriented``): a parallel loop at a kernel's top
+        level, ``serial`` loops inside a loop. Returns the number of tiles that changed or wait (0: settled)."""
         pending = 0
-        bound = ti.math.inf
-        if not lifting:
-            bound = _settling_bound(stamps, keys, tick, band)
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
         if ti.static(serial):
@@ -527,7 +564,7 @@ class _Kernels:
         lowering_key = tile["lowering_key"]
         broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
         store_penalty, blocked_lanes = cell["store_penalty"], cell["blocked_lanes"]
-        successor_move, width = cell["successor_move"], cell["width"]
+        successor_move, width, band, lowest = cell["successor_move"], cell["width"], cell["band"], cell["lowest"]
         Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
         Penalties = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.i32, ndim=3)  # noqa: N806
         Ints = ti.types.ndarray(dtype=ti.i32, ndim=1)  # noqa: N806
@@ -584,23 +621,39 @@ class _Kernels:
                    run: ti.types.vector(2, ti.i32)) -> ti.i32:
             """One round of in-place settling (run = (tick, lifting)), the tiles shared out among the threads;
             returns the number of tiles that changed or wait."""
-            return settle_all(values, pen, stamps, keys, header, cap, run[0], run[1], False)
+            bound = ti.math.inf
+            if not run[1]:
+                bound = _settling_bound(stamps, keys, header, run[0], band)
+            return settle_all(values, pen, stamps, keys, header, cap, run[0], run[1], bound, False)
 
         @kernel
         def settle_serially(values: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints,
-                            cap: ti.f32, run: ti.types.vector(6, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, mirror)): up to
-            ``rounds`` rounds until settled, or until more than ``limit`` tiles are active. A raise wave that ends
-            hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles active since round
-            ``since``); with ``mirror`` (a small layer), unless stopped by ``limit``, the tiles stamped since
-            ``since`` are then copied into ``dst``. result = (rounds done, still lifting, settled, mirrored)."""
+                            cap: ti.f32, run: ti.types.vector(8, ti.i32), result: Ints):
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, mirror,
+            focus row, focus col)): up to ``rounds`` rounds until settled, until more than ``limit`` tiles are
+            active, or - with a focus (padded layer coordinates; row -1: none), once lowering - until no pending
+            tile can change the focus's value or successors: every active tile keyed, and the lowest priority at
+            least the focus's value (a pending cell can only fall to key + 1 or more, and a way from the focus
+            through it is at least its distance longer). A raise wave that ends hands its tiles to lowering in the
+            same launch (``key_for_lowering``, the tiles active since round ``since``); with ``mirror`` (a small
+            layer), unless stopped by ``limit``, the tiles stamped since ``since`` are then copied into ``dst``.
+            result = (rounds done, still lifting, settled, mirrored, stopped at the focus)."""
             tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
-            done, settled, busy = 0, 0, 0
+            header[FOCUS_ROW], header[FOCUS_COL] = run[6], run[7]
+            done, settled, busy, focused = 0, 0, 0, 0
             while done < rounds and settled == 0:
-                if _active_tiles(stamps, tick + done) > limit:
+                scan = _round_scan(stamps, keys, header, tick + done)
+                if scan[0] > limit:
                     busy = 1
                     break
-                touched = settle_all(values, pen, stamps, keys, header, cap, tick + done, lifting, True)
+                if not lifting and scan[0] > 0 and run[6] >= 0 and scan[2] == 0:
+                    if scan[1] >= lowest(values[0, run[6], run[7]]):
+                        focused = 1
+                        break
+                bound = ti.math.inf
+                if not lifting:
+                    bound = scan[1] + band
+                touched = settle_all(values, pen, stamps, keys, header, cap, tick + done, lifting, bound, True)
                 done += 1
                 if touched == 0:
                     if lifting:
@@ -614,7 +667,7 @@ class _Kernels:
                 for row in range(stamps.shape[0] * stamps.shape[1]):
                     mirror_row(values, dst, stamps, since, row)
                 mirrored = 1
-            result[0], result[1], result[2], result[3] = done, lifting, settled, mirrored
+            result[0], result[1], result[2], result[3], result[4] = done, lifting, settled, mirrored, focused
 
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -691,18 +744,20 @@ class _Kernels:
                     store_penalty(pen, g, i, j, lane, value)
 
         @ti.func
-        def stamp_near(stamps: ti.template(), g, a, b, tick):
+        def stamp_near(stamps: ti.template(), keys: ti.template(), g, a, b, tick):
             """Activate for iteration ``tick`` the tiles of group g that have its layer cell (a, b) within reach (a
-            layer sees a cell up to PAD outside it)."""
+            layer sees a cell up to PAD outside it), with no key: an edited cell may fall below any key a pending
+            repair gave them, so they are due at once."""
             for da in ti.static(range(-PAD, PAD + 1, PAD)):
                 for db in ti.static(range(-PAD, PAD + 1, PAD)):
                     ta, tb = (a + da) // TILE, (b + db) // TILE
                     if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
                         stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
+                        keys[g, ta, tb] = ti.math.inf
 
         @kernel
-        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, origins: Origins, cells: Cells,
-                  penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32, tick: ti.i32):
+        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, origins: Origins,
+                  cells: Cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32, tick: ti.i32):
             """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
             activate the tiles near them for iteration ``tick``; a newly occupied cell takes its obstacle value, the
             cap, at once in both buffers."""
@@ -717,10 +772,10 @@ class _Kernels:
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, g, a, b, tick)
+                        stamp_near(stamps, keys, g, a, b, tick)
 
         @kernel
-        def stamp_cells(stamps: Stamps, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
+        def stamp_cells(stamps: Stamps, keys: Keys, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
             """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
             (see ``stamp_near``; ``pen`` gives the layers' shape)."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
@@ -729,7 +784,7 @@ class _Kernels:
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, g, a, b, tick)
+                        stamp_near(stamps, keys, g, a, b, tick)
 
         @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
@@ -808,7 +863,7 @@ class _Layers:
         self.origins = _device(self.grid_origins)
         self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
         self.keys = ti.ndarray(ti.f32, self.stamps.shape)
-        self.header = _device(np.array([0, source[0], source[1]], np.int32))
+        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
         # (cells as bytes, this kind's values there) sampled while idle; dropped by everything that changes values:
@@ -817,6 +872,11 @@ class _Layers:
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
         self.woken = 0  # the latest iteration the host stamped tiles for (activate_all, activate_cells)
         self.raised = False  # an obstacle painted or the source moved since the last reset or raise wave
+        # A converge stopped before the fixed point (at its focus, or by max_rounds) leaves its active tiles and their
+        # keys for the next converge; ``repair_since`` is the first round of a raise wave still under way (the
+        # tiles it lifted are handed to lowering when it ends), None when none is.
+        self.pending = False
+        self.repair_since: int | None = None
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -845,16 +905,19 @@ class _Layers:
         self.raised = True
 
     def activate_all(self) -> None:
+        """Every tile active for the next iteration or round, with no key (due at once)."""
         self.stamps.fill(self.tick)
         self.keys.fill(math.inf)
         self.woken = self.tick
+        self.pending, self.repair_since = False, None
 
     def deactivate_all(self) -> None:
         self.stamps.fill(-1)
 
     def activate_cells(self, cells: np.ndarray) -> None:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
-        self.kernels.stamp_cells(stamps=self.stamps, pen=self.pen, origins=self.origins, cells=cells, tick=self.tick)
+        self.kernels.stamp_cells(stamps=self.stamps, keys=self.keys, pen=self.pen, origins=self.origins, cells=cells,
+                                 tick=self.tick)
         self.woken = self.tick
 
     def gather_penalties(self, grid: np.ndarray) -> None:
@@ -863,7 +926,8 @@ class _Layers:
 
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
-        self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, origins=self.origins,
+        self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
+                           origins=self.origins,
                            cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
         self.woken = self.tick
         self.raised = self.raised or bool((penalties > 0).any())
@@ -883,6 +947,7 @@ class _Layers:
                           tick=self.tick)
         self.woken = self.tick
         self.raised = False
+        self.pending, self.repair_since = False, None
         self._idle_sample = None
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
@@ -914,6 +979,8 @@ class _Layers:
             self._count_iterations(k)
             return
         self._idle_sample = None
+        if self.pending:  # a converge's keys do not survive Jacobi iterations: every tile due, as after a reset
+            self.activate_all()
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
@@ -933,7 +1000,7 @@ class _Layers:
         return dict(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                     origins=self.origins, cap=self.cap)
 
-    def converge(self, max_rounds: int | None) -> int:
+    def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None) -> int:
         """Repair: from the current values to the fixed point, in time that grows with the region the edits since
         the last converge affect. Returns the rounds done (lifting and lowering), at most ``max_rounds``.
 
@@ -946,22 +1013,29 @@ class _Layers:
         raise wave that can fall, in order of their keys (``key_for_lowering``). A small layer's converge is one
         launch (``settle_serially``: raise wave, hand-over, lowering, mirror). With no obstacle painted and no source
         moved since the last reset or raise wave, no value can be below its relaxation, and the raise wave is
-        skipped."""
+        skipped.
+
+        With ``focus`` (padded layer coordinates), lowering takes the tiles in order of key plus distance from the
+        focus and stops once no pending tile can change the focus's value or successor chain (``settle_serially``):
+        the rest stays pending (:attr:`pending`), keys and all, for the next converge. So does a converge cut short
+        by ``max_rounds``, a raise wave under way included (:attr:`repair_since`)."""
         self._idle_sample = None
         limit = _NEVER if max_rounds is None else max_rounds
-        first = self.tick
+        first = self.tick if self.repair_since is None else self.repair_since
         small = math.prod(self.stamps.shape) <= _serial_limit(self._serial_tiles())
-        state = {"lifting": int(self.raised), "mirrored": False}
-        result = np.zeros(4, np.int32)
+        state = {"lifting": int(self.raised), "mirrored": False, "focused": False}
+        result = np.zeros(5, np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
+        aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
             self.kernels.settle_serially(**arrays, dst=self.dst, result=result,
-                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, int(small)))
+                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, int(small),
+                                              *aim))
             self.tick += int(result[0])
-            state["lifting"], state["mirrored"] = int(result[1]), bool(result[3])
-            return int(result[0]), bool(result[2])
+            state["lifting"], state["mirrored"], state["focused"] = int(result[1]), bool(result[3]), bool(result[4])
+            return int(result[0]), bool(result[2] or result[4])
 
         def in_parallel(done: int) -> bool:
             pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
@@ -973,14 +1047,16 @@ class _Layers:
             state["lifting"] = 0
             return False
 
-        rounds, settled = self._waves(limit, self._serial_tiles(), serially, in_parallel)
+        rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
         self.raised = bool(state["lifting"])
         if not state["mirrored"]:
             self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
-        if settled:
+        if finished and not state["focused"]:
             self.deactivate_all()
+            self.pending, self.repair_since = False, None
         else:
-            self.activate_all()
+            self.pending, self.woken = True, self.tick  # the active tiles wait for the next converge or iteration
+            self.repair_since = first if self.raised else None
         return rounds
 
     def _serial_tiles(self) -> int:
@@ -1144,10 +1220,15 @@ class Engine:
         """Cells changed by the last iteration, all layers together."""
         return sum(layers.changed() for layers in self._layers)
 
-    def converge(self, max_rounds: int | None = None) -> int:
+    def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None) -> int:
         """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
         exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds it took
         (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
+
+        ``focus``, a cell (row, col): a focused repair, as D* Lite's. The goal layer settles in order of key plus
+        Euclidean distance from the cell and stops as soon as nothing pending can change the cell's value or the
+        successors from it to the goal: they are then those of the fixed point exactly, and the rest of the layer
+        waits (:meth:`pending`) until a later converge needs it. Node layers always converge fully.
 
         Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
         of SETTLE_BAND, PACKED_SETTLE_BAND for node layers, and alternating diagonal directions) and wakes the
@@ -1159,9 +1240,16 @@ class Engine:
         if self._goal_moved:
             self._goal.reset()
             self._goal_moved = False
-        rounds = max(layers.converge(max_rounds) for layers in self._layers)
+        focused = None if focus is None else (int(focus[0]) + PAD, int(focus[1]) + PAD)
+        rounds = max(layers.converge(max_rounds, focused if layers is self._goal else None)
+                     for layers in self._layers)
         self.iterations = 0
         return rounds
+
+    def pending(self) -> bool:
+        """Whether the last :meth:`converge` left work pending (it stopped at its focus, or at ``max_rounds``): the
+        values are then exact only where the focus said."""
+        return any(layers.pending for layers in self._layers)
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

@@ -77,7 +77,7 @@ class DistanceField:
         self._engine.step(k)
         return self._engine.changed() if k else 0
 
-    def converge(self, max_rounds: int | None = None) -> int:
+    def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None) -> int:
         """Relax to the exact fixed point: the setup phase, and the repair after edits; return the rounds it took.
 
         Works from the current values: after :meth:`set_occupied` it lifts to inf (or ``d_max``) the values that
@@ -86,9 +86,27 @@ class DistanceField:
         region the edits affect; after :meth:`set_goal` it starts again from the initial state. The result equals
         a fresh field's converge() and synchronous iteration to convergence, bit for bit. ``max_rounds`` bounds the
         rounds; :attr:`iterations` is 0 after it.
+
+        ``focus`` (a cell, the robot's) makes it a focused repair, as D* Lite's: it stops as soon as nothing still
+        to do can change the distance at ``focus`` or the successors from there to the goal, which are then exactly
+        those of the fixed point; the rest waits (:attr:`pending`) for a later converge.
+
+        Raises:
+            ValueError: ``max_rounds`` is not a positive integer, or ``focus`` is not a cell of the map.
+
+        Examples:
+            >>> field.set_occupied([(10, 40), (11, 40)])   # doctest: +SKIP
+            >>> field.converge(focus=(30, 0))              # doctest: +SKIP
         """
         max_rounds = checks.optional_integer(max_rounds, "max_rounds", 1)
-        return self._engine.converge(max_rounds)
+        if focus is not None:
+            focus = self._check_cell(focus, "focus")
+        return self._engine.converge(max_rounds, focus)
+
+    @property
+    def pending(self) -> bool:
+        """Whether the last :meth:`converge` left work for later (it stopped at its focus or at ``max_rounds``)."""
+        return self._engine.pending()
 
     def reset(self) -> None:
         """Back to the initial state: 0 at the goal, ``d_max`` elsewhere, iteration 0 (map edits kept)."""
