@@ -18,8 +18,8 @@ from benchmarks.common import (blockage_metrics, print_table, quick_parser, run_
 from tdp.simulate import oracle_run, run_planner
 
 VARIANTS = {"accelerating, 16 nodes": {"nodes": 16}, "accelerating, 25 nodes": {"nodes": 25},
-            "accelerating, 49 nodes": {"nodes": 49}, "plain DP": {"accelerating": False}}
-QUICK_VARIANTS = {"accelerating, 25 nodes": {"nodes": 25}, "plain DP": {"accelerating": False}}
+            "accelerating, 49 nodes": {"nodes": 49}, "plain DP": {"planner": "plain-dp"}}
+QUICK_VARIANTS = {"accelerating, 25 nodes": {"nodes": 25}, "plain DP": {"planner": "plain-dp"}}
 
 
 def run_scenario(name: str, ks: list[int], variants: dict) -> list[dict]:
@@ -33,10 +33,10 @@ def run_scenario(name: str, ks: list[int], variants: dict) -> list[dict]:
     rows.append({"scenario": name, "planner": "D* Lite (Python)", "k": None,
                  **blockage_metrics(scenario, run_planner(scenario, dstar, base, scenario.max_ticks),
                                     oracle["length"], route)})
-    run_navigator(scenario, tdp.NavigatorConfig(updates_per_move=1))  # warm-up: caches (setup() compiles the kernels)
+    run_navigator(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=1))  # warm-up: caches (setup() compiles the kernels)
     for k in ks:
         for label, options in variants.items():
-            config = tdp.NavigatorConfig(updates_per_move=k, **options)
+            config = tdp.NavigatorConfig(**{"planner": "accelerating", "updates_per_move": k, **options})
             record, _ = run_navigator(scenario, config)
             rows.append({"scenario": name, "planner": label, "k": k,
                          **blockage_metrics(scenario, record, oracle["length"], route)})

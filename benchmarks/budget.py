@@ -35,7 +35,7 @@ def worlds(quick: bool) -> list[tdp.Scenario]:
 
 
 def run(scenario: tdp.Scenario, options: dict, oracle_length: float) -> dict:
-    config = tdp.NavigatorConfig(**options)
+    config = tdp.NavigatorConfig(planner="accelerating", **options)
     navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0), scenario.grid.resolution), scenario.start,
                               scenario.goal, config)
     navigator.setup()

@@ -157,11 +157,11 @@ def print_table(headers: list[str], rows: list[list[str]]) -> None:
 
 
 def run_navigator(scenario, config, max_ticks: int | None = None) -> tuple[dict, object]:
-    """One grid-level run of a Navigator (setup, then the tick loop); returns (record, navigator)."""
+    """One grid-level run of the planner ``config`` names (setup, then the tick loop); returns (record, planner)."""
     import tdp
     from tdp.simulate import run_planner
 
-    navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
+    navigator = tdp.make_planner(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
     navigator.setup()
     record = run_planner(scenario, navigator, config, max_ticks or scenario.max_ticks)
     return record, navigator

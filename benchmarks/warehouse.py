@@ -36,8 +36,9 @@ from tdp.random_worlds import boxes_on_map
 from tdp.simulate import run_planner, start_grid
 
 SEEDS, TICKS, BOXES = [0, 1, 2], 300, 6
-PLANNERS = [("accelerating", {}), ("plain DP", {"accelerating": False}),
-            ("accelerating, 1 ms budget", {"budget_ms": 1.0})]
+PLANNERS = [("exact", {"planner": "exact"}), ("exact, 1 ms budget", {"planner": "exact", "budget_ms": 1.0}),
+            ("accelerating", {"planner": "accelerating"}), ("plain DP", {"planner": "plain-dp"}),
+            ("accelerating, 1 ms budget", {"planner": "accelerating", "budget_ms": 1.0})]
 
 
 def worlds(quick: bool) -> list[tdp.Scenario]:
@@ -55,8 +56,8 @@ def worlds(quick: bool) -> list[tdp.Scenario]:
     return scenarios
 
 
-def navigator(scenario: tdp.Scenario, config: tdp.NavigatorConfig) -> tdp.Navigator:
-    return tdp.Navigator(start_grid(scenario), scenario.start, scenario.goal, config)
+def navigator(scenario: tdp.Scenario, config: tdp.NavigatorConfig):
+    return tdp.make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
 
 
 def run(scenario: tdp.Scenario, options: dict, ticks: int) -> dict:

@@ -1,8 +1,9 @@
 """PyBullet runs of tdp's scenarios (headless by default).
 
     python -m sim list
-    python -m sim run --scenario NAME | --world FILE [--no-accelerating] [--updates K] [--gui] --out DIR
-    python -m sim compare --scenario NAME | --world FILE [--updates K] --out DIR
+    python -m sim run --scenario NAME | --world FILE [--planner exact|accelerating|plain-dp] [--updates K] [--gui]
+                      --out DIR
+    python -m sim compare --scenario NAME | --world FILE [--updates K] --out DIR   the three planners side by side
 """
 from __future__ import annotations
 
@@ -11,24 +12,22 @@ import sys
 from pathlib import Path
 
 
-def _config(args: argparse.Namespace, accelerating: bool):
+def _config(args: argparse.Namespace, planner: str):
     import tdp
 
-    return tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=args.updates, budget_ms=args.budget_ms,
-                               predict_ticks=args.predict_ticks, avoid_boxes=args.avoid_boxes)
+    tracking = {} if planner == "exact" else {"predict_ticks": args.predict_ticks, "avoid_boxes": args.avoid_boxes}
+    return tdp.NavigatorConfig(planner=planner, updates_per_move=args.updates, budget_ms=args.budget_ms, **tracking)
 
 
-def _run_and_save(args: argparse.Namespace, accelerating: bool, out: Path, stem: str,
-                  frames: list | None = None) -> dict:
+def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, frames: list | None = None) -> dict:
     from tdp.cli import save_json, world_from
 
     from .episode import run_episode
     from .render import save_trace_figure
 
     scenario = world_from(args)
-    kind = "accelerating nodes" if accelerating else "plain DP"
-    print(f"running {scenario.name} in PyBullet ({kind}, K = {args.updates})", flush=True)
-    metrics = run_episode(scenario, _config(args, accelerating), gui=getattr(args, "gui", False), progress=True,
+    print(f"running {scenario.name} in PyBullet ({_config(args, planner).label()})", flush=True)
+    metrics = run_episode(scenario, _config(args, planner), gui=getattr(args, "gui", False), progress=True,
                           frames=frames)
     metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
     metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
@@ -60,11 +59,11 @@ def run(args: argparse.Namespace) -> int:
 
     out = output_folder(args.out)
     frames = [] if args.animate else None
-    metrics = _run_and_save(args, not args.no_accelerating, out, "metrics", frames)
+    metrics = _run_and_save(args, args.planner, out, "metrics", frames)
     print(_summary(metrics))
     print(f"wrote {metrics['json']} and {metrics['figure']}")
     if args.animate:
-        _animate(out, [("accelerating nodes" if not args.no_accelerating else "plain DP", frames)])
+        _animate(out, [(_config(args, args.planner).label(), frames)])
     return 0
 
 
@@ -72,9 +71,9 @@ def compare(args: argparse.Namespace) -> int:
     from tdp.cli import output_folder
 
     out = output_folder(args.out)
-    films = {kind: [] if args.animate else None for kind in ("accelerating", "plain-dp")}
-    rows = [(kind, _run_and_save(args, kind == "accelerating", out, kind, frames)) for kind, frames in films.items()]
-    print(f"\n{rows[0][1]['scenario']}, K = {args.updates}, PyBullet DIRECT")
+    films = {kind: [] if args.animate else None for kind in ("exact", "accelerating", "plain-dp")}
+    rows = [(kind, _run_and_save(args, kind, out, kind, frames)) for kind, frames in films.items()]
+    print(f"\n{rows[0][1]['scenario']}, K = {args.updates} for the DP planners, PyBullet DIRECT")
     print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "
           "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -84,7 +83,7 @@ def compare(args: argparse.Namespace) -> int:
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))
     if args.animate:
-        _animate(out, [(f"{kind}, K = {args.updates}", frames) for kind, frames in films.items()])
+        _animate(out, [(_config(args, kind).label(), frames) for kind, frames in films.items()])
     return 0
 
 
@@ -104,7 +103,7 @@ def _positive(text: str) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
-    from tdp.cli import add_world_arguments
+    from tdp.cli import add_planner_argument, add_world_arguments
 
     main = argparse.ArgumentParser(prog="python -m sim", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -124,7 +123,7 @@ def parser() -> argparse.ArgumentParser:
         sub.add_argument("--animate", action="store_true",
                          help="also write animation.gif from the simulator's own camera (headless)")
         if name == "run":
-            sub.add_argument("--no-accelerating", action="store_true", help="plain DP")
+            add_planner_argument(sub)
             sub.add_argument("--gui", action="store_true", help="open the PyBullet window (needs a display)")
         sub.set_defaults(run=function)
     return main

@@ -71,7 +71,8 @@ def inflated_scenario(scenario: tdp.Scenario, cells: int) -> tdp.Scenario:
 
 
 class _Run:
-    """State of one episode: world, robot, navigator, controller and the record."""
+    """State of one episode: world, robot, planner (``navigator``: whichever the config names), controller and the
+    record."""
 
     def __init__(self, scenario: tdp.Scenario, config: tdp.NavigatorConfig, sim: SimConfig, client: int):
         self.scenario, self.config, self.sim, self.client = scenario, config, sim, client
@@ -87,14 +88,14 @@ class _Run:
         for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
             if mask[cell]:
                 raise ValueError(f"{name} {cell} is within {sim.inflate_m} m of an obstacle: no room for the robot")
-        self.navigator = tdp.Navigator(tdp.GridMap(mask), scenario.start, scenario.goal, config)
+        self.navigator = tdp.make_planner(tdp.GridMap(mask), scenario.start, scenario.goal, config)
         self.feed = WorldFeed(mask, scenario.goal)
         self.navigator.setup()
         x, y = self.grid.cell_to_world(*scenario.start)
         gx, gy = self.grid.cell_to_world(*scenario.goal)
         self.robot = DiffDriveRobot(client, x, y, math.atan2(gy - y, gx - x))
         self.controller = PurePursuit(max_v=sim.max_speed)
-        self.trace: list[tuple[float, float, str]] = [(x, y, "dp")]
+        self.trace: list[tuple[float, float, str]] = [(x, y, "exact" if config.planner == "exact" else "dp")]
         self.length_m = 0.0
         self.contact_steps = 0
         self.min_clearance = math.inf
@@ -233,7 +234,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     oracle_m = oracle["length"] * run.cell_m
     turn_point, switch_back_point = run.landmark_points()
     return {
-        "scenario": scenario.name, "accelerating": config.accelerating, "updates_per_move": config.updates_per_move,
+        "scenario": scenario.name, "planner": config.planner, "updates_per_move": config.updates_per_move,
         "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick,
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
         "ratio": run.length_m / oracle_m if oracle["reached"] and oracle_m > 0 else None,

@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 
 import tdp
+from tdp.navigator import planner_label
 from tdp.plot import MODE_COLOURS, box_patch, pyplot, draw_map, save_figure
 
 
@@ -44,8 +45,7 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
             ax.plot(c, r, "kx", ms=9, mew=2)
             ax.annotate("A" if name == "turn_point" else "B", (c, r), xytext=(6, -6), textcoords="offset points",
                         fontsize=13, weight="bold")
-    kind = "accelerating nodes" if metrics["accelerating"] else "plain DP"
-    ax.set_title(f"PyBullet {metrics['scenario']}, {kind}, K = {metrics['updates_per_move']}: "
+    ax.set_title(f"PyBullet {metrics['scenario']}, {planner_label(metrics['config'])}: "
                  f"{metrics['path_length_m']:.2f} m (oracle {metrics['oracle_length_m']:.2f} m), "
                  f"contacts {metrics['contacts']}", fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)

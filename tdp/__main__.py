@@ -31,13 +31,12 @@ def run(args: argparse.Namespace) -> int:
 
     scenario = world_from(args)
     out = output_folder(args.out)
-    config = tdp.NavigatorConfig(accelerating=not args.no_accelerating, nodes=args.nodes, vision=args.vision,
+    config = tdp.NavigatorConfig(planner=args.planner, nodes=args.nodes, vision=args.vision,
                                  updates_per_move=args.updates, detect_window=args.detect_window,
                                  detect_rise=args.detect_rise, neighbourhood=args.neighbourhood,
                                  corner_cutting=args.corner_cutting, budget_ms=args.budget_ms,
                                  predict_ticks=args.predict_ticks, avoid_boxes=args.avoid_boxes)
-    print(f"running {scenario.name} ({'accelerating nodes' if config.accelerating else 'plain DP'}, "
-          f"K = {config.updates_per_move})", flush=True)
+    print(f"running {scenario.name} ({config.label()})", flush=True)
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
     metrics = save_json(episode.to_dict(), out / "metrics.json")
     figure = save_episode_figure(scenario, episode, out / "episode.png")
@@ -116,7 +115,7 @@ def sweep(args: argparse.Namespace) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
-    from tdp.cli import add_world_arguments
+    from tdp.cli import add_planner_argument, add_world_arguments
 
     main = argparse.ArgumentParser(prog="python -m tdp", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -124,7 +123,7 @@ def parser() -> argparse.ArgumentParser:
     commands.add_parser("list", help="list the named scenarios").set_defaults(run=list_scenarios)
     r = commands.add_parser("run", help="run a scenario: metrics.json and episode.png")
     add_world_arguments(r)
-    r.add_argument("--no-accelerating", action="store_true", help="plain DP, the paper's baseline")
+    add_planner_argument(r)
     r.add_argument("--updates", type=int, default=4, help="K, DP iterations per robot move (default 4)")
     r.add_argument("--budget-ms", type=float, default=None,
                    help="a time budget per tick instead of K: as many DP iterations as fit (at least one)")

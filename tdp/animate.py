@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .navigator import planner_label
 from .plot import MODE_COLOURS, draw_map, pyplot
 from .simulate import Episode
 from .world import Scenario
@@ -65,8 +66,7 @@ class _Panel:
         self.modes = np.array([str(m) for m in episode.modes])
         self.target = [tuple(t) for t in _target_path(scenario, episode)]
         draw_map(ax, scenario.grid.occupied)
-        kind = "accelerating nodes" if episode.config["accelerating"] else "plain DP"
-        ax.set_title(f"{kind}, K = {episode.config['updates_per_move']}", fontsize=9)
+        ax.set_title(planner_label(episode.config), fontsize=9)
         if len(self.nodes):
             ax.plot(self.nodes[:, 1], self.nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=4)
         self.boxes = ax.imshow(np.ma.masked_all(scenario.grid.shape), cmap="Oranges", vmin=0, vmax=1.2,

@@ -40,6 +40,14 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     quick.add_argument("--blockage", action="store_true", help="a box appears in a narrow place of the route")
 
 
+def add_planner_argument(parser: argparse.ArgumentParser) -> None:
+    """--planner: the planner of the run (NavigatorConfig's ``planner``)."""
+    from tdp.navigator import PLANNERS
+
+    parser.add_argument("--planner", choices=PLANNERS, default="exact",
+                        help="exact replanning every tick (default), the paper's accelerating nodes, or plain DP")
+
+
 def world_from(args: argparse.Namespace):
     """The Scenario that ``--scenario``, ``--world`` or ``--map`` names."""
     import tdp

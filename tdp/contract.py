@@ -16,7 +16,8 @@ import numpy as np
 
 class Mode(str, Enum):
     """What the robot did on a tick: followed the goal layer (``DP``), a backup subgoal's layer (``BACKUP``), the
-    exact field (``ORACLE``), D* Lite's search (``DSTAR``), stayed where it was (``WAIT``), or stayed because a box is
+    goal layer repaired exactly for its route (``EXACT``) or, with a budget that ran out first, as far as the repair
+    got (``BEHIND``), D* Lite's search (``DSTAR``), stayed where it was (``WAIT``), or stayed because a box is
     predicted to enter the cell it would have moved to (``YIELD``, with obstacle prediction on). Modes compare equal
     to their strings ("dp", "backup", ...) and are written as those strings."""
 
@@ -24,7 +25,8 @@ class Mode(str, Enum):
     BACKUP = "backup"
     WAIT = "wait"
     YIELD = "yield"
-    ORACLE = "oracle"
+    EXACT = "exact"
+    BEHIND = "behind"
     DSTAR = "d*lite"
 
     __hash__ = str.__hash__  # hash as the string, so that a dict keyed by "dp" finds Mode.DP

@@ -876,6 +876,7 @@ class _Layers:
         # keys for the next converge; ``repair_since`` is the first round of a raise wave still under way (the
         # tiles it lifted are handed to lowering when it ends), None when none is.
         self.pending = False
+        self.cut_short = False  # the last converge stopped at max_rounds (not at the fixed point or its focus)
         self.repair_since: int | None = None
         self.activate_all()
 
@@ -1048,7 +1049,7 @@ class _Layers:
             return False
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
-        self.raised = bool(state["lifting"])
+        self.raised, self.cut_short = bool(state["lifting"]), not finished
         if not state["mirrored"]:
             self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
         if finished and not state["focused"]:
@@ -1250,6 +1251,10 @@ class Engine:
         """Whether the last :meth:`converge` left work pending (it stopped at its focus, or at ``max_rounds``): the
         values are then exact only where the focus said."""
         return any(layers.pending for layers in self._layers)
+
+    def cut_short(self) -> bool:
+        """Whether the last :meth:`converge` stopped at ``max_rounds``, before the fixed point or its focus."""
+        return any(layers.cut_short for layers in self._layers)
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

@@ -23,6 +23,11 @@ from .predict import MotionPredictor
 from .search import uniform_cost_search
 from .stencil import check_neighbourhood, escape_move, legal_moves, moves
 
+#: The planners a config can name: exact replanning every tick (tdp.ExactPlanner), the paper's accelerating nodes and
+#: its plain DP baseline (tdp.Navigator).
+PLANNERS = ("exact", "accelerating", "plain-dp")
+#: What each planner is called in messages and figures.
+PLANNER_NAMES = {"exact": "exact replanning", "accelerating": "accelerating nodes", "plain-dp": "plain DP"}
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
 SWITCH_BACK = ("evidence", "paper")
@@ -43,12 +48,17 @@ MEET_TICKS = 8
 class NavigatorConfig:
     """Every parameter of the planner.
 
-    accelerating: use accelerating nodes (False: plain DP, the paper's baseline).
+    planner: "exact" (default: the goal layer repaired exactly every tick, :class:`tdp.ExactPlanner`; RESULTS.md's
+    equal-time benchmark finds it the best for a user who does not choose), "accelerating" (the paper's accelerating
+    nodes, :class:`tdp.Navigator`) or "plain-dp" (the paper's baseline: K synchronous DP iterations per move). The
+    exact planner reads the stencil, ``d_max`` and ``budget_ms`` (then its repair is anytime: see ExactPlanner);
+    ``accelerating=False`` of earlier versions is ``planner="plain-dp"``.
     nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
     spacing: lattice spacing s in cells, overriding ``nodes`` when given.
     vision: DmaxQ / s (ARCHITECTURE §5.2). updates_per_move: K, DP iterations per robot move.
     budget_ms: a time budget per tick in milliseconds instead of a fixed K: each tick runs as many DP iterations
-    as fit in it, the monitor included (at least one; the number depends on the machine, so runs do too).
+    as fit in it, the monitor included (at least one; the number depends on the machine, so runs do too); for the
+    exact planner, how long its repair may run before the robot moves on the layer as far as it got.
     detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
     d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
     placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
@@ -64,7 +74,7 @@ class NavigatorConfig:
     tick: it yields (stays) or, if a box is about to enter its own cell, steps aside.
     """
 
-    accelerating: bool = True
+    planner: str = "exact"
     nodes: int = 25
     vision: float = 2.5
     updates_per_move: int = 4
@@ -84,7 +94,8 @@ class NavigatorConfig:
         def normalised(name: str, value) -> None:  # the checked value, as a plain Python int, float or bool
             object.__setattr__(self, name, value)
 
-        normalised("accelerating", checks.flag(self.accelerating, "accelerating"))
+        if self.planner not in PLANNERS:
+            raise ValueError(f"planner must be one of {PLANNERS}, got {self.planner!r}")
         normalised("nodes", checks.integer(self.nodes, "nodes", 1))
         if self.spacing is not None:
             normalised("spacing", checks.number(self.spacing, "spacing", 1.0))
@@ -104,6 +115,14 @@ class NavigatorConfig:
             raise ValueError(f"switch_back must be one of {SWITCH_BACK}, got {self.switch_back!r}")
         normalised("predict_ticks", checks.integer(self.predict_ticks, "predict_ticks", 0))
         normalised("avoid_boxes", checks.flag(self.avoid_boxes, "avoid_boxes"))
+        if self.planner == "exact" and (self.predict_ticks or self.avoid_boxes):
+            raise ValueError("predict_ticks and avoid_boxes track boxes for the DP planners: they need planner "
+                             "'accelerating' or 'plain-dp', not 'exact'")
+
+    @property
+    def accelerating(self) -> bool:
+        """Whether the planner is the paper's accelerating nodes."""
+        return self.planner == "accelerating"
 
     @property
     def rise(self) -> float:
@@ -113,9 +132,22 @@ class NavigatorConfig:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def label(self) -> str:
+        """The planner's name with what bounds its work per tick: K for the DP planners, or the budget."""
+        return planner_label(self.to_dict())
+
+
+def planner_label(config: dict) -> str:
+    """:meth:`NavigatorConfig.label` of a config written as a dict (an episode's, a run's metrics)."""
+    if config.get("budget_ms") is not None:
+        return f"{PLANNER_NAMES[config['planner']]}, {config['budget_ms']:g} ms"
+    return PLANNER_NAMES[config["planner"]] + ("" if config["planner"] == "exact" else
+                                               f", K = {config['updates_per_move']}")
+
 
 class Navigator:
-    """Plans a robot's moves on a changing grid with the DP and, optionally, accelerating nodes.
+    """Plans a robot's moves on a changing grid with the paper's DP: accelerating nodes (``planner="accelerating"``)
+    or plain DP (``"plain-dp"``), K synchronous iterations (or a time budget's worth) per move.
 
     Cells are (row, col); the navigator never moves the robot itself: :meth:`tick` says where to go and the caller
     reports the robot's position with :meth:`move_robot`. Map edits (:meth:`update_map`) and goal moves
@@ -123,9 +155,12 @@ class Navigator:
     """
 
     def __init__(self, grid: GridMap, start: tuple[int, int], goal: tuple[int, int],
-                 config: NavigatorConfig = NavigatorConfig()):
+                 config: NavigatorConfig = NavigatorConfig(planner="accelerating")):
         if not isinstance(config, NavigatorConfig):
             raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
+        if config.planner == "exact":
+            raise ValueError("Navigator runs the planners 'accelerating' and 'plain-dp'; for planner 'exact' use "
+                             "tdp.ExactPlanner, or tdp.make_planner for whichever the config names")
         if not isinstance(grid, GridMap):
             raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
         self.grid = grid

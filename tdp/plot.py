@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from .grid import GridMap
+from .navigator import planner_label
 
 
 def pyplot():
@@ -58,7 +59,7 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
 
 
 MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "yield": "tab:purple",
-                "oracle": "tab:gray"}
+                "exact": "tab:green", "behind": "tab:olive", "d*lite": "tab:cyan"}
 
 
 def box_patch(plt, box, **style):
@@ -104,8 +105,7 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
             ax.annotate(name, (point[1], point[0]), xytext=(6, -6), textcoords="offset points", fontsize=13,
                         weight="bold", color="black")
             ax.plot(point[1], point[0], "kx", ms=9, mew=2)
-    accelerating = "accelerating nodes" if episode.config["accelerating"] else "plain DP"
-    ax.set_title(f"{episode.scenario}, {accelerating}, K = {episode.config['updates_per_move']}: "
+    ax.set_title(f"{episode.scenario}, {planner_label(episode.config)}: "
                  f"length {episode.length:.1f} (oracle {episode.oracle_length:.1f}, ratio {episode.ratio:.3f})",
                  fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)

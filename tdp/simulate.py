@@ -9,11 +9,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import checks
-from .field import DistanceField
+from .contract import Planner, WorldFeed, detection_records, landmarks, timing_summary
+from .exact import ExactPlanner
 from .grid import GridMap
-from .contract import Mode, Planner, TickResult, WorldFeed, detection_records, landmarks, timing_summary
-from .navigator import Navigator, NavigatorConfig
-from .stencil import escape_move, moves
+from .navigator import NavigatorConfig
+from .planners import make_planner
+from .stencil import moves
 from .world import Scenario, box_distance
 
 
@@ -49,41 +50,6 @@ class Episode:
         return {k: v for k, v in self.__dict__.items()}
 
 
-class Oracle:
-    """The same robot with unlimited compute: exact distances (a converged field) every tick."""
-
-    def __init__(self, grid: GridMap, start, goal, config: NavigatorConfig):
-        self.field = DistanceField(grid, goal, config.neighbourhood, config.corner_cutting, config.d_max)
-        self.moves = moves(config.neighbourhood, config.corner_cutting)
-        self.walls = grid.occupied.copy()  # the map's own obstacles: occupied at the start and never freed since
-        self.robot = start
-
-    def update_map(self, cells, occupied) -> None:
-        for value in (True, False):
-            self.field.set_occupied(cells[occupied == value], value)
-        self.walls[cells[~occupied, 0], cells[~occupied, 1]] = False
-
-    def set_goal(self, goal) -> None:
-        self.field.set_goal(goal)
-
-    def move_robot(self, cell) -> None:
-        self.robot = cell
-
-    def tick(self) -> TickResult:
-        began = time.perf_counter()
-        self.field.converge()
-        step = self.field.successor(self.robot)
-        if self.field.occupied[self.robot]:
-            step = escape_move(self.field.occupied, self.robot, self.moves, self._goal_distances, self.walls) or step
-        result = TickResult(mode=Mode.ORACLE, next_cell=step)
-        result.timings = {"converge": time.perf_counter() - began}
-        return result
-
-    def _goal_distances(self, cells: list) -> np.ndarray:
-        values = np.array([self.field.distance(cell) for cell in cells])
-        return np.where(values >= self.field.d_max, np.inf, values)
-
-
 def _allowed_moves(config: NavigatorConfig) -> dict:
     return {(m.dr, m.dc): m for m in moves(config.neighbourhood, config.corner_cutting)}
 
@@ -97,8 +63,8 @@ def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
 
 
 def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
-    """Drive ``planner`` (any :class:`~tdp.contract.Planner`: a :class:`~tdp.navigator.Navigator`, the oracle, or a
-    baseline such as the benchmarks' D* Lite) through the scenario, tick by tick; returns the raw record
+    """Drive ``planner`` (any :class:`~tdp.contract.Planner`: a :class:`~tdp.navigator.Navigator`, an
+    :class:`~tdp.exact.ExactPlanner`, or a baseline such as D* Lite) through the scenario, tick by tick; returns the raw record
     (trajectory, modes, length in cells, collisions, hits, ticks, reached, the planner's TickResults, the target's
     path).
 
@@ -141,10 +107,11 @@ def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, m
 
 def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), max_ticks: int | None = None,
              progress: bool = False) -> Episode:
-    """Run ``scenario`` with the planner of ``config`` and with the oracle; return the Episode's metrics.
+    """Run ``scenario`` with the planner of ``config`` (:func:`tdp.make_planner`) and with the oracle; return the
+    Episode's metrics.
 
-    Each tick: the world moves (obstacles, target), the planner runs K DP iterations and its monitor, then the robot
-    makes one stencil move to the successor, unless that cell is occupied. ``max_ticks`` defaults to the
+    Each tick: the world moves (obstacles, target), the planner plans (the exact planner repairs; the DP planners
+    run K iterations and their monitor), then the robot makes one stencil move, unless that cell is occupied. ``max_ticks`` defaults to the
     scenario's (or 4 (H + W)). ``progress`` prints a line every 25 ticks to stderr.
     """
     if not isinstance(scenario, Scenario):
@@ -160,7 +127,7 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
             if tick % 25 == 0:
                 print(f"  [{scenario.name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
 
-    navigator = Navigator(start_grid(scenario), scenario.start, scenario.goal, config)
+    navigator = make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
     edges = navigator.node_edges()
@@ -170,10 +137,23 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     return _episode(scenario, config, navigator, record, oracle_record, nodes, edges)
 
 
+def oracle_config(config: NavigatorConfig) -> NavigatorConfig:
+    """The oracle of a config: the exact planner, unbudgeted, on the same stencil and ``d_max``."""
+    return NavigatorConfig(planner="exact", neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting,
+                           d_max=config.d_max)
+
+
+def oracle(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], config: NavigatorConfig) -> ExactPlanner:
+    """The oracle, set up: the robot with exact distances every tick (:func:`oracle_config`'s planner)."""
+    planner = ExactPlanner(grid, start, goal, oracle_config(config))
+    planner.setup()
+    return planner
+
+
 def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> dict:
     """The oracle's run of ``scenario``: a dict with its ``length`` (cells), ``trajectory``, ``reached``, ``ticks``."""
-    oracle = Oracle(start_grid(scenario), scenario.start, scenario.goal, config)
-    return run_planner(scenario, oracle, config, max_ticks)
+    return run_planner(scenario, oracle(start_grid(scenario), scenario.start, scenario.goal, config), config,
+                       max_ticks)
 
 
 def start_grid(scenario: Scenario) -> GridMap:
@@ -198,8 +178,8 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
                      if obstacle.present(tick)]
         closest = min(distances) if distances else None
     ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
-    timings = {name: timing_summary([r.timings[name] for r in results])
-               for name in ("update", "dp", "monitor", "search")}
+    phases = dict.fromkeys(name for r in results for name in r.timings)
+    timings = {name: timing_summary([r.timings.get(name, 0.0) for r in results]) for name in phases}
     timings["total"] = timing_summary([sum(r.timings.values()) for r in results])
     return Episode(
         scenario=scenario.name, config=config.to_dict(), reached=record["reached"], ticks=record["ticks"],

@@ -7,7 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from tdp.engine import Engine
-from tests.test_repair import apply, assert_equal_to_a_fresh_converge, launch_rounds
+from test_repair import apply, assert_equal_to_a_fresh_converge, launch_rounds
 
 OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "robot", "robot", "step"]
 

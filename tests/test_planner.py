@@ -16,7 +16,7 @@ from tdp.stencil import escape_move
 
 from reference import distances_to
 
-DEFAULT = tdp.NavigatorConfig()
+DEFAULT = tdp.NavigatorConfig(planner="accelerating")
 
 
 @pytest.fixture(scope="module")
@@ -25,7 +25,7 @@ def episodes():
     runs = {(name, 4, True): tdp.simulate(tdp.scenarios.get(name), DEFAULT) for name in tdp.scenarios.names()}
     for name in ("sudden-blockage", "moving-blockage", "moving-obstacles"):
         for accelerating in (True, False):
-            config = tdp.NavigatorConfig(accelerating=accelerating, updates_per_move=1)
+            config = tdp.NavigatorConfig(planner="accelerating" if accelerating else "plain-dp", updates_per_move=1)
             runs[(name, 1, accelerating)] = tdp.simulate(tdp.scenarios.get(name), config)
     return runs
 
@@ -92,7 +92,7 @@ def test_clearing_takes_the_opened_passage(episodes):
 
 
 def test_runs_are_deterministic(episodes):
-    again = tdp.simulate(tdp.scenarios.get("sudden-blockage"), tdp.NavigatorConfig(updates_per_move=1))
+    again = tdp.simulate(tdp.scenarios.get("sudden-blockage"), tdp.NavigatorConfig(planner="accelerating", updates_per_move=1))
     first = episodes[("sudden-blockage", 1, True)]
     assert again.trajectory == first.trajectory and again.modes == first.modes
     assert again.detections == first.detections and again.length == first.length
@@ -100,7 +100,7 @@ def test_runs_are_deterministic(episodes):
 
 def test_switch_back_after_path_cost_iterations_with_the_papers_rule():
     scenario = tdp.scenarios.get("sudden-blockage")
-    config = tdp.NavigatorConfig(updates_per_move=4, switch_back="paper")
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=4, switch_back="paper")
     navigator = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config)
     navigator.setup()
     occupied, robot = scenario.occupancy(0), scenario.start
@@ -278,7 +278,7 @@ def test_covering_and_uncovering_nodes_alone_raises_no_detection():
     box = tdp.Obstacle(box=(27, 14, 33, 20), waypoints=[(27, 40), (27, 14)] * 6, speed=1.0)
     scenario = tdp.Scenario(grid, (2, 2), (57, 2), obstacles=[box], name="node-covered")
     for k in (1, 4):
-        episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=k, spacing=20.0))
+        episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=k, spacing=20.0))
         assert episode.reached and episode.collisions == 0
         assert [30, 30] in [list(n) for n in episode.nodes]
         assert episode.detections == []
@@ -288,7 +288,7 @@ def test_no_route_in_the_node_graph_follows_the_goal_layer_instead_of_waiting():
     """A corridor world that deadlocked with the paper's lattice ("drop" leaves no node on the side route, so the
     backup search finds no route): the robot now follows the goal layer, which knows the detour, and never waits."""
     scenario = make_world("corridor", 100, 3)
-    config = tdp.NavigatorConfig(updates_per_move=4, placement="drop", switch_back="paper")
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=4, placement="drop", switch_back="paper")
     episode = tdp.simulate(scenario, config)
     assert episode.reached and episode.collisions == 0
     assert "wait" not in episode.modes
@@ -297,8 +297,8 @@ def test_no_route_in_the_node_graph_follows_the_goal_layer_instead_of_waiting():
 
 def test_evidence_leaves_the_backup_once_the_goal_layer_knows_a_route_at_least_as_short():
     scenario = tdp.scenarios.get("sudden-blockage")
-    paper = tdp.simulate(scenario, tdp.NavigatorConfig(switch_back="paper"))
-    evidence = tdp.simulate(scenario, tdp.NavigatorConfig(switch_back="evidence"))
+    paper = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", switch_back="paper"))
+    evidence = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", switch_back="evidence"))
     assert 0 < evidence.modes.count("backup") < paper.modes.count("backup")
     assert evidence.ratio <= paper.ratio + 0.005
 
@@ -310,7 +310,7 @@ def test_leaving_a_backup_by_evidence_takes_a_settled_route_to_the_goal(seed):
     the goal there while its value at R was still 12 cells short of that chain's length; following that layer as
     the rise arrived cost 9 cells (ratio 1.09 against plain DP's 1.065)."""
     scenario = make_world("rooms", 100, seed)
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4))
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=4))
     assert episode.reached and "backup" in episode.modes
     left = len(episode.modes) - episode.modes[::-1].index("backup")
     cell = episode.trajectory[left]
@@ -324,9 +324,9 @@ def test_a_route_lengthened_by_boxes_far_ahead_starts_no_backup():
     route to be settled before a backup starts made the robot follow one for 78 ticks (1.093 against plain DP's
     1.017); the whole-route test is asked only when leaving a backup."""
     scenario = make_world("cluttered", 200, 4)
-    config = tdp.NavigatorConfig(updates_per_move=1)
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1)
     accelerating = tdp.simulate(scenario, config)
-    plain = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=1, accelerating=False))
+    plain = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=1, planner="plain-dp"))
     assert accelerating.detections and "backup" not in accelerating.modes
     assert accelerating.ratio <= plain.ratio + 0.005
 
@@ -337,7 +337,7 @@ def test_every_backup_edge_is_a_real_connection_on_the_map_of_its_tick(seed, k):
     on that tick's map (scipy's Dijkstra) is under DmaxQ. Layers still read the old distance through a closed door
     for a while; the first backups of these worlds used to head for the node in front of it."""
     scenario = make_world("rooms", 100, seed)
-    config = tdp.NavigatorConfig(updates_per_move=k)
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=k)
     dmax_q = tdp.Navigator(tdp.GridMap(scenario.occupancy(0)), scenario.start, scenario.goal, config).dmax_q
     episode = tdp.simulate(scenario, config)
     assert episode.reached and episode.backups
@@ -357,7 +357,7 @@ def test_a_door_closing_on_the_robot_does_not_trap_it():
     grid = tdp.GridMap(np.zeros((20, 20), bool))
     door = tdp.Obstacle(box=(9, 3, 12, 6), appear_at=4)
     scenario = tdp.Scenario(grid, (10, 0), (10, 19), obstacles=[door], name="door-on-robot")
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4), max_ticks=80)
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", nodes=4), max_ticks=80)
     assert episode.trajectory[3] == (10, 3) and episode.hits >= 1
     assert episode.reached and episode.collisions == 0
     assert not scenario.holds(4, (10, 3)) and not scenario.holds(40, (10, 3))
@@ -375,7 +375,7 @@ def test_a_thick_door_closing_on_the_robot_in_its_doorway_lets_it_drive_out(acce
     occupied[10:14, 14:17] = False
     door = tdp.Obstacle(box=(10, 14, 14, 17), appear_at=11)
     scenario = tdp.Scenario(tdp.GridMap(occupied), (2, 15), (27, 15), obstacles=[door], name="thick-door")
-    config = tdp.NavigatorConfig(nodes=4, accelerating=accelerating)
+    config = tdp.NavigatorConfig(nodes=4, planner="accelerating" if accelerating else "plain-dp")
     episode = tdp.simulate(scenario, config, max_ticks=120)
     assert episode.trajectory[10] == (12, 15)  # two rows into the doorway when the door closes
     assert episode.reached and episode.collisions == 0 and episode.ratio == pytest.approx(1.0)
@@ -394,7 +394,7 @@ def test_a_door_closing_on_the_robot_lets_it_drive_on_through_when_that_side_is_
     occupied[12:14, 14:17] = False
     door = tdp.Obstacle(box=(12, 14, 14, 17), appear_at=11)
     scenario = tdp.Scenario(tdp.GridMap(occupied), (2, 15), (27, 15), obstacles=[door], name="door-behind")
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4, accelerating=accelerating), max_ticks=120)
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4, planner="accelerating" if accelerating else "plain-dp"), max_ticks=120)
     assert episode.trajectory[10] == (12, 15)  # in the doorway's first row when the door closes
     assert episode.reached and episode.collisions == 0
     assert episode.length == pytest.approx(25.0) and episode.oracle_length == pytest.approx(25.0)
@@ -431,7 +431,7 @@ def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelera
     was given. That cell was taken for one of the map's walls (the escape then failed with a KeyError); a cell freed
     since the start is no wall, and the robot drives out."""
     scenario = make_world("cluttered", 100, 217)
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4, accelerating=accelerating))
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4, planner="accelerating" if accelerating else "plain-dp"))
     assert episode.reached and episode.collisions == 0
 
 
@@ -440,11 +440,11 @@ def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelera
     ({"detect_window": 0}, "detect_window"), ({"detect_rise": -2}, "detect_rise"), ({"d_max": 0}, "d_max"),
     ({"neighbourhood": 5}, "neighbourhood"), ({"placement": "random"}, "placement"), ({"spacing": 0.5}, "spacing"),
     ({"switch_back": "never"}, "switch_back"),
-    ({"accelerating": "yes"}, "accelerating"),
+    ({"planner": "accelerated"}, "planner"), ({"planner": "exact", "predict_ticks": 4}, "predict_ticks"),
 ])
 def test_invalid_config_raises(kwargs, message):
     with pytest.raises(ValueError, match=message):
-        tdp.NavigatorConfig(**kwargs)
+        tdp.NavigatorConfig(**{"planner": "accelerating", **kwargs})
 
 
 def test_obstacles_move_appear_and_vanish():
@@ -481,7 +481,7 @@ def test_unreachable_goal_makes_the_robot_wait_then_go_when_it_opens():
     door = tdp.Obstacle(box=(6, 0, 7, 12), vanish_at=15)
     free_grid = tdp.GridMap(np.zeros((12, 12), bool))
     scenario = tdp.Scenario(free_grid, (0, 0), (11, 11), obstacles=[door], name="door")
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4), max_ticks=60)
+    episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", nodes=4), max_ticks=60)
     assert episode.modes[:10] == ["wait"] * 10
     assert episode.reached and episode.collisions == 0
     assert grid.shape == (12, 12)
@@ -495,7 +495,7 @@ def test_episode_animation_frames(tmp_path):
     from tdp.animate import MAX_FRAMES, save_episode_animation
 
     scenario = tdp.scenarios.get("static")
-    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(accelerating=a)) for a in (True, False)]
+    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating" if a else "plain-dp")) for a in (True, False)]
     written = save_episode_animation(scenario, episodes, tmp_path / "static.gif")
     assert written[0] == tmp_path / "static.gif"
     ticks = max(e.ticks for e in episodes)
@@ -512,9 +512,9 @@ def test_episode_animation_frames(tmp_path):
 
 def test_a_time_budget_runs_at_least_one_iteration_and_more_when_it_can():
     scenario = tdp.scenarios.get("sudden-blockage")
-    tiny = tdp.simulate(scenario, tdp.NavigatorConfig(budget_ms=1e-6), max_ticks=30)
+    tiny = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", budget_ms=1e-6), max_ticks=30)
     assert tiny.iterations == tiny.ticks  # at least one iteration a tick, and no time for a second
-    roomy = tdp.simulate(scenario, tdp.NavigatorConfig(budget_ms=50.0), max_ticks=30)
+    roomy = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", budget_ms=50.0), max_ticks=30)
     assert roomy.iterations > 10 * roomy.ticks  # a settled map iterates in microseconds
     with pytest.raises(ValueError, match="budget_ms"):
-        tdp.NavigatorConfig(budget_ms=0)
+        tdp.NavigatorConfig(planner="accelerating", budget_ms=0)

@@ -130,16 +130,17 @@ def test_cli_errors_are_one_line(args, message, monkeypatch):
 
 def test_camera_frames_and_the_side_by_side_animation(tmp_path):
     """--animate: the simulator's own camera looks down on the world (headless), one picture every second tick;
-    compare writes both runs side by side as a GIF."""
+    compare writes the three planners' runs side by side as a GIF."""
     done = subprocess.run([sys.executable, "-m", "sim", "compare", "--scenario", "static", "--animate", "--out",
                            str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
     assert f"animation: {tmp_path / 'animation.gif'}" in done.stdout
     from PIL import Image
 
-    ticks = max(json.loads((tmp_path / f"{kind}.json").read_text())["ticks"] for kind in ("accelerating", "plain-dp"))
+    kinds = ("exact", "accelerating", "plain-dp")
+    ticks = max(json.loads((tmp_path / f"{kind}.json").read_text())["ticks"] for kind in kinds)
     with Image.open(tmp_path / "animation.gif") as gif:
-        assert gif.n_frames == -(-ticks // 2) and gif.size == (720, 360 + 18)
+        assert gif.n_frames == -(-ticks // 2) and gif.size == (3 * 360, 360 + 18)
         gif.seek(0)
         first = np.asarray(gif.convert("RGB"), float)
         gif.seek(gif.n_frames - 1)

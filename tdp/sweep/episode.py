@@ -5,9 +5,10 @@ import time
 
 from ..contract import Mode, timing_summary
 from ..dstar_lite import DStarLite
-from ..navigator import Navigator, NavigatorConfig
-from ..simulate import Oracle, run_planner, start_grid
-from .spec import Episode, metric_function
+from ..navigator import NavigatorConfig
+from ..planners import make_planner
+from ..simulate import oracle, run_planner, start_grid
+from .spec import Episode, config_planner, metric_function
 
 #: The row's metrics that are measured times: they vary from run to run; every other value of a row is
 #: deterministic (unless the config sets budget_ms, which trades iterations for time).
@@ -18,7 +19,7 @@ def run_episode(episode: Episode) -> dict:
     """Run ``episode``; return its row: key, the world's coordinates, the planner, its ``config`` (a dict), the
     metrics (lengths in cells, times in seconds for setup and in milliseconds per tick) and any extra metrics."""
     scenario = episode.world.build()
-    config = NavigatorConfig(accelerating=episode.planner == "accelerating", **episode.config)
+    config = NavigatorConfig(planner=config_planner(episode.planner), **episode.config)
     began = time.perf_counter()
     planner = _planner(episode.planner, scenario, config)
     setup_s = time.perf_counter() - began
@@ -32,6 +33,7 @@ def run_episode(episode: Episode) -> dict:
            "backup_ticks": sum(m == Mode.BACKUP for m in modes),
            "detections": sum(len(r.detections) for r in record["results"]),
            "relevant_detections": sum(d.relevant for r in record["results"] for d in r.detections),
+           "behind_ticks": sum(m == Mode.BEHIND for m in modes),
            "nodes_placed": len(planner.nodes) if episode.planner == "accelerating" else None,
            "setup_s": setup_s, **{f"ms_{name}": value for name, value in per_tick.items()}}
     for name in episode.metrics:
@@ -42,12 +44,10 @@ def run_episode(episode: Episode) -> dict:
 def _planner(kind: str, scenario, config: NavigatorConfig):
     """The planner of ``kind`` on the scenario's map at tick 0, set up (its kernels compiled: no JIT in a tick)."""
     if kind == "oracle":
-        oracle = Oracle(start_grid(scenario), scenario.start, scenario.goal, config)
-        oracle.field.converge()
-        return oracle
+        return oracle(start_grid(scenario), scenario.start, scenario.goal, config)
     if kind == "dstar-lite":
         return DStarLite(scenario.occupancy(0), scenario.start, scenario.goal, config.neighbourhood,
                          config.corner_cutting)
-    navigator = Navigator(start_grid(scenario), scenario.start, scenario.goal, config)
-    navigator.setup()
-    return navigator
+    planner = make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
+    planner.setup()
+    return planner

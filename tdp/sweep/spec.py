@@ -17,6 +17,7 @@ A spec (every key but ``worlds`` and ``planners`` optional)::
         blockage: true
     common: {neighbourhood: 16}      # NavigatorConfig fields for every planner
     planners:
+      - planner: exact               # exact replanning every tick; budget_ms: [0.3, 1] makes it anytime
       - planner: accelerating        # NavigatorConfig fields; a list sweeps the field
         nodes: [9, 25, 49]
         updates_per_move: [1, 4]
@@ -45,14 +46,17 @@ from pathlib import Path
 import yaml
 
 from .. import checks
+from ..navigator import PLANNERS as NAVIGATOR_PLANNERS
 from ..navigator import NavigatorConfig
 
-PLANNERS = ("accelerating", "plain-dp", "dstar-lite", "oracle")
+PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
 #: NavigatorConfig fields that only accelerating nodes read.
 NODE_FIELDS = ("nodes", "spacing", "vision", "detect_window", "detect_rise", "placement", "switch_back")
 #: The fields every planner reads: the moves allowed.
 STENCIL_FIELDS = ("neighbourhood", "corner_cutting")
-CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "accelerating")
+CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
+#: The fields the exact planner reads.
+EXACT_FIELDS = STENCIL_FIELDS + ("d_max", "budget_ms")
 WORLD_KINDS = ("family", "scenario", "world", "map")
 
 
@@ -274,8 +278,8 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
     if not isinstance(entry, dict) or entry.get("planner") not in PLANNERS:
         raise ValueError(f"{where}: a mapping whose 'planner' is one of {', '.join(PLANNERS)}")
     planner = entry["planner"]
-    allowed = {"accelerating": CONFIG_FIELDS, "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS)
-               }.get(planner, STENCIL_FIELDS)
+    allowed = {"accelerating": CONFIG_FIELDS, "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS),
+               "exact": EXACT_FIELDS}.get(planner, STENCIL_FIELDS)
     given = {k: v for k, v in entry.items() if k not in ("planner", "max_size")}
     max_size = checks.optional_integer(entry.get("max_size"), f"{where}.max_size", 1)
     for name in given:
@@ -287,11 +291,17 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
     runs = []
     for values in itertools.product(*(_listed(settings[n]) for n in names)):
         try:
-            config = NavigatorConfig(accelerating=planner == "accelerating", **dict(zip(names, values))).to_dict()
+            config = NavigatorConfig(planner=config_planner(planner), **dict(zip(names, values))).to_dict()
         except ValueError as error:
             raise ValueError(f"{where} ({planner}): {error}") from None
         runs.append((planner, {k: config[k] for k in allowed}, max_size))
     return runs, names
+
+
+def config_planner(kind: str) -> str:
+    """The NavigatorConfig ``planner`` of a sweep's planner name: the name itself for the planners a config names,
+    "exact" for the oracle (the exact planner, unbudgeted) and D* Lite (which reads only the stencil)."""
+    return kind if kind in NAVIGATOR_PLANNERS else "exact"
 
 
 def metric_function(name: str):

@@ -1,0 +1,157 @@
+"""Exact replanning every tick: the goal layer repaired to its fixed point where the robot's route needs it.
+
+Each tick takes the map's and the goal's edits, repairs the goal layer with a converge focused on the robot's cell
+(D* Lite's stop rule, ARCHITECTURE §7: the value there and the successors from there to the goal are those of a
+full converge, exactly; work that cannot change them waits for a tick that needs it) and moves to the successor.
+With a time budget the repair is anytime: it stops at the budget and goes on at the next tick with the new edits
+merged, and the robot follows the partly repaired layer meanwhile (see :class:`ExactPlanner`).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from . import checks
+from .contract import Mode, TickResult
+from .engine import Engine
+from .field import cells_from
+from .grid import GridMap
+from .navigator import NavigatorConfig
+from .stencil import escape_move, moves
+
+#: With a budget, the first converge of a tick runs at most this many rounds before the time is looked at; later
+#: ones as many as the rate so far says fit in what is left.
+FIRST_ROUNDS = 4
+
+
+class ExactPlanner:
+    """The planner of ``NavigatorConfig(planner="exact")``: optimal on the map as it is at every tick.
+
+    Cells are (row, col), distances in cells. The same contract as :class:`tdp.Navigator` (:meth:`setup`, then each
+    tick :meth:`update_map`, :meth:`set_goal`, :meth:`tick`, :meth:`move_robot`), the same escape rule when an
+    obstacle covers the robot's cell (:func:`tdp.stencil.escape_move`), no node layers. It reads the stencil,
+    ``d_max`` and ``budget_ms`` of the config.
+
+    Unbudgeted, every tick's move is the successor of a full converge on that tick's map (mode ``exact``). With
+    ``budget_ms`` a tick repairs for at most about that long (plus a fixed overhead, RESULTS.md "equal time");
+    when the budget runs out before the robot's route is settled, the robot follows the layer as far as the
+    repair got (mode ``behind``): once the raise wave is through, every finite value is the length of a real
+    route on the current map and the successors only make legal moves down it, so the robot heads along a real
+    route, perhaps not the shortest, and never into an obstacle; values still in the raise wave may lead towards a
+    passage that has closed. The repair catches up at a later tick and the route is exact again.
+
+    Raises:
+        ValueError: ``grid`` is not a GridMap, ``config`` not a NavigatorConfig, start or goal not a free cell.
+
+    Examples:
+        >>> import numpy as np, tdp
+        >>> planner = tdp.ExactPlanner(tdp.GridMap(np.zeros((20, 20), bool)), (0, 0), (19, 19))
+        >>> planner.setup() > 0
+        True
+        >>> planner.tick().next_cell
+        (1, 1)
+    """
+
+    def __init__(self, grid: GridMap, start: tuple[int, int], goal: tuple[int, int],
+                 config: NavigatorConfig = NavigatorConfig(planner="exact")):
+        if not isinstance(grid, GridMap):
+            raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
+        if not isinstance(config, NavigatorConfig):
+            raise ValueError(f"config must be a tdp.NavigatorConfig, got {type(config).__name__}")
+        self.grid, self.config = grid, config
+        self.robot = grid.check_free_cell(start, "start")
+        self.engine = Engine(grid.occupied, grid.check_free_cell(goal, "goal"), goal_cap=config.d_max,
+                             neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting)
+        self.nodes = np.zeros((0, 2), np.int32)
+        self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
+        self._moves = moves(config.neighbourhood, config.corner_cutting)
+        self._round_s = 0.0  # seconds per round of the last budgeted repair that ran any
+        # The cells whose route to the goal the last repair left exact (the robot's cell and its next step), or
+        # none since an edit or a goal move: a tick that finds the robot on one of them has nothing to repair.
+        self._exact_from: tuple[tuple[int, int], ...] = ()
+
+    @property
+    def goal(self) -> tuple[int, int]:
+        return self.engine.goal
+
+    def setup(self) -> int:
+        """Compile the engine's kernels and converge the goal layer fully; returns the rounds it took."""
+        self.engine.warm_up()
+        return self.engine.converge()
+
+    def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
+        """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
+        cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
+        flags = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        self._walls[cells[~flags, 0], cells[~flags, 1]] = False
+        self.engine.set_cells(cells, flags)
+        if len(cells):
+            self._exact_from = ()
+
+    def set_goal(self, goal: tuple[int, int]) -> None:
+        """Move the target; it may stand on an obstacle (then no cell reaches it until it leaves)."""
+        self.engine.set_goal(checks.cell(goal, self.grid.shape, "goal"))
+        self._exact_from = ()
+
+    def move_robot(self, cell: tuple[int, int]) -> None:
+        """The robot is now at ``cell`` (inside the map; an obstacle may have driven onto it)."""
+        self.robot = checks.cell(cell, self.grid.shape, "robot cell")
+
+    def tick(self) -> TickResult:
+        """Repair (focused on the robot; within the budget, if any), then the successor or the way out of an
+        obstacle. Mode ``exact``, ``behind`` (the budget ran out first) or ``wait`` (no move)."""
+        began = time.perf_counter()
+        exact = self.robot in self._exact_from or self._repair(began)
+        repaired = time.perf_counter()
+        step = self.route(1)
+        step = step[0] if step else None
+        self._exact_from = (self.robot,) + ((step,) if step else ()) if exact else ()
+        if self.engine.occupied[self.robot]:
+            step = escape_move(self.engine.occupied, self.robot, self._moves, self._distances, self._walls) or step
+        moving = step is not None or self.robot == self.goal
+        mode = (Mode.EXACT if exact else Mode.BEHIND) if moving else Mode.WAIT
+        result = TickResult(mode=mode, next_cell=step)
+        result.timings = {"converge": repaired - began, "search": time.perf_counter() - repaired}
+        return result
+
+    def _repair(self, began: float) -> bool:
+        """Converge focused on the robot, in one go or, with a budget, in slices until it is through or the budget
+        is spent; returns whether the robot's route is exact. Not called when the robot stands on the route the
+        last repair left exact and nothing changed since: stepping along an exact route, every pending tile's
+        priority falls by at most the step, and so does the robot's value (the focus test still holds)."""
+        focus = None if self.engine.occupied[self.robot] else self.robot  # escaping reads the whole neighbourhood
+        if self.config.budget_ms is None:
+            self.engine.converge(focus=focus)
+            return True
+        deadline = began + self.config.budget_ms / 1e3
+        rounds = FIRST_ROUNDS
+        while True:
+            sliced = time.perf_counter()
+            done = self.engine.converge(max_rounds=rounds, focus=focus)
+            now = time.perf_counter()
+            if not self.engine.cut_short():
+                return True
+            if done:
+                self._round_s = (now - sliced) / done
+            left = deadline - now
+            if left <= self._round_s:
+                return False
+            rounds = max(1, int(left / self._round_s)) if self._round_s > 0 else 2 * rounds
+
+    def _distances(self, cells: list) -> np.ndarray:
+        """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""
+        values = self.engine.sample(cells)[:, 0].astype(np.float64)
+        return np.where(values >= self.config.d_max, np.inf, values)
+
+    def route(self, steps: int) -> list[tuple[int, int]]:
+        """Up to ``steps`` cells the robot would follow from its cell now (the goal layer's successors); empty at
+        the goal or where the layer gives no move."""
+        if self.robot == self.goal:
+            return []
+        return self.engine.trace(0, self.robot, steps)
+
+    def node_edges(self) -> list[tuple[int, int]]:
+        """No node graph: an empty list (figures draw the node graph of planners that have one)."""
+        return []

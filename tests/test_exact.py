@@ -1,0 +1,93 @@
+"""The exact planner (NavigatorConfig(planner="exact")): at every tick the move of a full converge on that tick's
+map, on every family of random worlds, the named scenarios and quick worlds on MovingAI maps; anytime under a budget."""
+import numpy as np
+import pytest
+
+import tdp
+from benchmarks.reference_planner import FullConverge
+from tdp.contract import Mode
+from tdp.random_worlds import FAMILIES, boxes_on_map, make_world
+from tdp.simulate import run_planner, start_grid
+
+EXACT = tdp.NavigatorConfig(planner="exact")
+
+
+def both(scenario, config=EXACT, ticks=None):
+    ticks = ticks or scenario.tick_limit
+    exact = tdp.ExactPlanner(start_grid(scenario), scenario.start, scenario.goal, config)
+    exact.setup()
+    reference = FullConverge(start_grid(scenario), scenario.start, scenario.goal, config)
+    return run_planner(scenario, exact, config, ticks), run_planner(scenario, reference, config, ticks)
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("seed", [11, 12])
+def test_the_exact_planner_drives_the_full_converges_trajectory(family, seed):
+    ours, reference = both(make_world(family, 60, seed))
+    assert ours["trajectory"] == reference["trajectory"]
+    assert ours["reached"] and ours["collisions"] == 0
+    assert all(mode == Mode.EXACT for mode in ours["modes"])
+
+
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(4, False), (8, False), (8, True), (16, True)])
+def test_every_stencil(neighbourhood, corner_cutting):
+    config = tdp.NavigatorConfig(planner="exact", neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+    ours, reference = both(make_world("rooms", 60, 5), config)
+    assert ours["trajectory"] == reference["trajectory"]
+
+
+@pytest.mark.parametrize("name", tdp.scenarios.names())
+def test_named_scenarios(name):
+    ours, reference = both(tdp.scenarios.get(name))
+    assert ours["trajectory"] == reference["trajectory"] and ours["reached"]
+
+
+def test_a_quick_world_on_a_movingai_map():
+    grid = tdp.load_map("tests/data/arena.map")
+    ours, reference = both(boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=3, blockage=True))
+    assert ours["trajectory"] == reference["trajectory"] and ours["reached"]
+
+
+def test_simulate_uses_it_by_default_and_its_ratio_is_one():
+    episode = tdp.simulate(make_world("corridor", 60, 2))
+    assert episode.config["planner"] == "exact"
+    assert episode.reached and episode.ratio == 1.0 and episode.trajectory == episode.oracle_trajectory
+
+
+@pytest.mark.parametrize("family", ["cluttered", "crossing", "rooms"])
+def test_a_tight_budget_still_reaches_without_collision_and_catches_up(family):
+    """With a budget far below a repair's time the robot follows the layer as far as the repair got (mode behind),
+    never collides, and is exact again at later ticks."""
+    scenario = make_world(family, 100, 4)
+    config = tdp.NavigatorConfig(planner="exact", budget_ms=0.001)
+    planner = tdp.make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
+    planner.setup()
+    record = run_planner(scenario, planner, config, scenario.tick_limit)
+    assert record["reached"] and record["collisions"] == 0
+    assert Mode.EXACT in record["modes"]
+
+
+def test_a_goal_move_into_a_pocket_and_out():
+    """A moving target walks into a walled pocket (no route: the robot waits) and out again."""
+    occupied = np.zeros((30, 30), bool)
+    occupied[10:20, 10] = occupied[10:20, 20] = occupied[10, 10:21] = occupied[20, 10:21] = True
+    grid = tdp.GridMap(occupied)
+    planner = tdp.ExactPlanner(grid, (0, 0), (25, 25))
+    planner.setup()
+    planner.update_map([(15, 10)], False)  # a door
+    planner.set_goal((15, 15))
+    assert planner.tick().next_cell == (1, 1)
+    planner.update_map([(15, 10)], True)
+    result = planner.tick()
+    assert result.mode == Mode.WAIT and result.next_cell is None
+    planner.set_goal((25, 25))
+    assert planner.tick().mode == Mode.EXACT
+
+
+def test_bad_inputs_raise():
+    with pytest.raises(ValueError, match="grid must be a tdp.GridMap"):
+        tdp.ExactPlanner(np.zeros((5, 5), bool), (0, 0), (4, 4))
+    with pytest.raises(ValueError, match="goal"):
+        tdp.ExactPlanner(tdp.GridMap(np.eye(5, dtype=bool)), (0, 1), (4, 4))
+    with pytest.raises(ValueError, match="Navigator runs the planners"):
+        tdp.Navigator(tdp.GridMap(np.zeros((5, 5), bool)), (0, 0), (4, 4), EXACT)
