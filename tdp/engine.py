@@ -27,7 +27,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
 | converge: rounds of raise wave, then lowering | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
 | converge: hand the raise wave's tiles to lowering | ``settle_serially`` or ``prepare_lowering`` | when it ends |
-| converge: equal buffers | in ``settle_serially`` (small layer), or ``mirror`` | each converge |
+| converge: equal buffers | none: ``copy_from`` before the next busy iteration, if any | lazily |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
 | reads | ``sample``, ``trace`` | on demand, serial |
@@ -78,6 +78,10 @@ PACKED_SETTLE_BAND = 256.0
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
+#: The key of a tile just settled: nothing pending can lower its cells (a key is a lower bound, here a vacuous one)
+#: until a neighbour's change wakes it with a real key. A tile woken before its turn in a round keeps this, and
+#: waits to the end instead of being due at once (which kept a focused repair from stopping).
+_SETTLED = 1e38
 #: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
 #: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
 #: none): the cell whose value and successor chain a focused repair settles first and stops at.
@@ -285,17 +289,56 @@ def _given(argument) -> bool:
 
 
 @ti.func
-def _wake_around(stamps: ti.template(), keys: ti.template(), g, ta, tb, u, v, tick, key):
-    """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches; with ``keys`` (None when
-    iterating: only settling orders tiles) lower theirs to ``key``, the smallest new value among the cell's lanes:
-    the earliest any of them may change."""
+def _stamp(stamps: ti.template(), queue: ti.template(), g, a, b, tick):
+    """Stamp tile (g, a, b) for round or iteration ``tick``; with a ``queue`` (serial settling's work lists, None
+    elsewhere) the tile joins round ``tick``'s list unless it is on it already (stamped for ``tick`` before)."""
+    if ti.static(_given(queue)):
+        if stamps[g, a, b] < tick:
+            _enqueue(queue, tick, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
+    stamps[g, a, b] = tick
+
+
+@ti.func
+def _enqueue(queue: ti.template(), tick, tile):
+    """Append ``tile`` (a flat tile index) to the work list of round ``tick``: row tick % 2 of ``queue``, its count
+    in the last column."""
+    row, last = tick % 2, queue.shape[1] - 1
+    queue[row, queue[row, last]] = tile
+    queue[row, last] += 1
+
+
+@ti.func
+def _list_active(stamps: ti.template(), queue: ti.template(), tick):
+    """Make round ``tick``'s work list the tiles stamped for it (one pass over every tile); returns their number."""
+    queue[tick % 2, queue.shape[1] - 1] = 0
+    for g in range(stamps.shape[0]):
+        for a in range(stamps.shape[1]):
+            for b in range(stamps.shape[2]):
+                if stamps[g, a, b] >= tick:
+                    _enqueue(queue, tick, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
+    return queue[tick % 2, queue.shape[1] - 1]
+
+
+@ti.func
+def _listed_tile(stamps: ti.template(), queue: ti.template(), tick, k):
+    """(g, a, b) of entry k of round ``tick``'s work list."""
+    tile = queue[tick % 2, k]
+    per_group = stamps.shape[1] * stamps.shape[2]
+    return tile // per_group, (tile % per_group) // stamps.shape[2], tile % stamps.shape[2]
+
+
+@ti.func
+def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, ta, tb, u, v, tick, key):
+    """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches (``_stamp``); with ``keys``
+    (None when iterating: only settling orders tiles) lower theirs to ``key``, the smallest new value among the
+    cell's lanes: the earliest any of them may change."""
     for da in ti.static(range(-1, 2)):
         for db in ti.static(range(-1, 2)):
             near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
             near_b = db == 0 or (db < 0 and v < PAD) or (db > 0 and v >= TILE - PAD)
             a, b = ta + da, tb + db
             if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
-                stamps[g, a, b] = tick
+                _stamp(stamps, queue, g, a, b, tick)
                 if ti.static(_given(keys)):
                     ti.atomic_min(keys[g, a, b], key)
 
@@ -334,19 +377,17 @@ def _settling_bound(stamps: ti.template(), keys: ti.template(), header: ti.templ
 
 
 @ti.func
-def _round_scan(stamps: ti.template(), keys: ti.template(), header: ti.template(), tick):
-    """On the calling thread, for round ``tick``: (active tiles, the lowest finite priority among them, how many of
-    them have no key yet: due at once)."""
-    count, lowest, unkeyed = 0, ti.math.inf, 0
-    for g in range(stamps.shape[0]):
-        for a in range(stamps.shape[1]):
-            for b in range(stamps.shape[2]):
-                if stamps[g, a, b] >= tick:
-                    count += 1
-                    if keys[g, a, b] < ti.math.inf:
-                        lowest = ti.min(lowest, _priority(keys, header, g, a, b))
-                    else:
-                        unkeyed += 1
+def _round_scan(stamps: ti.template(), keys: ti.template(), header: ti.template(), queue: ti.template(), tick):
+    """On the calling thread, over round ``tick``'s work list (the tiles active for it): (their number, the lowest
+    finite priority among them, how many have no key yet: due at once)."""
+    count = queue[tick % 2, queue.shape[1] - 1]
+    lowest, unkeyed = ti.math.inf, 0
+    for k in range(count):
+        g, a, b = _listed_tile(stamps, queue, tick, k)
+        if keys[g, a, b] < ti.math.inf:
+            lowest = ti.min(lowest, _priority(keys, header, g, a, b))
+        else:
+            unkeyed += 1
     return ti.Vector([ti.f32(count), lowest, ti.f32(unkeyed)])
 
 
@@ -407,7 +448,7 @@ def _tile_rules(cell: dict) -> dict:
                     new = updated(src, pen, header, cap, g, r + PAD, c + PAD)
                     if differs(new, src[g, r + PAD, c + PAD]):
                         changed += 1
-                        _wake_around(stamps, None, g, ta, tb, u, v, tick + 1, 0.0)
+                        _wake_around(stamps, None, None, g, ta, tb, u, v, tick + 1, 0.0)
                     dst[g, r + PAD, c + PAD] = new
             if changed:
                 ti.atomic_add(header[CHANGED], changed)
@@ -429,12 +470,13 @@ def _tile_rules(cell: dict) -> dict:
 
     @ti.func
     def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                    header: ti.template(), cap, g, ta, tb, tick, sweep, bound, lifting):
+                    header: ti.template(), queue: ti.template(), cap, g, ta, tb, tick, sweep, bound, lifting):
         """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its key at
         most ``bound``, or inf: due at once); an active tile not yet due is deferred to the next round. A due tile
         sweeps its cells until they stop changing (in cache), each pass in the next of the four diagonal directions
         starting from the round's, ``sweep`` (``_oriented``), and wakes the neighbouring tiles that its changed
-        border cells reach (``_wake_around``). Returns 1 if the tile changed or was deferred.
+        border cells reach (``_wake_around``). Returns 1 if the tile changed or was deferred. Tiles stamped for the
+        next round join its work list (``queue``, serial settling only; None in a parallel round).
 
         Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
         source and a cell's relaxation never raises it (the caller guarantees that no value is below its
@@ -449,11 +491,12 @@ def _tile_rules(cell: dict) -> dict:
         pending = 0
         if stamps[g, ta, tb] >= tick:
             if keys[g, ta, tb] < ti.math.inf and _priority(keys, header, g, ta, tb) > bound:
-                stamps[g, ta, tb] = tick + 1
+                _stamp(stamps, queue, g, ta, tb, tick + 1)
                 pending = 1
             else:
                 rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
                 passes, changed_here = 0, 1
+                keys[g, ta, tb] = _SETTLED  # wakes from here on lower it; earlier ones are taken in now
                 while changed_here and passes < 4 * TILE:
                     changed_here = 0
                     for k in range(TILE * TILE):
@@ -473,35 +516,46 @@ def _tile_rules(cell: dict) -> dict:
                                     values[g, r + PAD, c + PAD] = new
                                     changed_here = 1
                                     if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                        _wake_around(stamps, keys, g, ta, tb, u, v, tick + 1, lowest(new))
+                                        _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
+                                                     lowest(new))
                     passes += 1
-                keys[g, ta, tb] = ti.math.inf
                 if passes > 1:
                     pending = 1
-                if changed_here:
-                    stamps[g, ta, tb] = tick + 1
+                if changed_here:  # not settled within its passes: due at once
+                    keys[g, ta, tb] = ti.math.inf
+                    _stamp(stamps, queue, g, ta, tb, tick + 1)
         return pending
 
     @ti.func
     def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                   header: ti.template(), cap, tick, lifting, bound, serial: ti.template()):
+                   header: ti.template(), queue: ti.template(), cap, tick, lifting, bound):
         """One round of ``settle_tile`` over the tiles due (priority at most ``bound``; every active tile when
-        ``lifting``), visited in the round's diagonal direction (``_oriented``): a parallel loop at a kernel's top
-        level, ``serial`` loops inside a loop. Returns the number of tiles that changed or wait (0: settled)."""
+        ``lifting``). With a ``queue`` (None: a parallel loop over every tile, at a kernel's top level) the round
+        runs on the calling thread over its work list, or, when that holds over a quarter of the tiles, over every
+        tile in the round's diagonal direction (``_oriented``, as fast sweeping); it builds the next round's list
+        as it goes. Returns the number of tiles that changed or wait (0: settled)."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
-        if ti.static(serial):
-            for g in range(stamps.shape[0]):
-                for a in range(tiles_a):
-                    for b in range(tiles_b):
-                        ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
-                        pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, sweep,
-                                               bound, lifting)
+        if ti.static(_given(queue)):
+            listed = queue[tick % 2, queue.shape[1] - 1]
+            if 4 * listed > stamps.shape[0] * tiles_a * tiles_b:
+                for g in range(stamps.shape[0]):
+                    for a in range(tiles_a):
+                        for b in range(tiles_b):
+                            ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
+                            pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick,
+                                                   sweep, bound, lifting)
+            else:
+                for k in range(listed):
+                    g, ta, tb = _listed_tile(stamps, queue, tick, k)
+                    pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep,
+                                           bound, lifting)
+            queue[tick % 2, queue.shape[1] - 1] = 0
         else:
             for g, a, b in stamps:
                 ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
-                pending += settle_tile(values, pen, stamps, keys, header, cap, g, ta, tb, tick, sweep, bound,
+                pending += settle_tile(values, pen, stamps, keys, header, None, cap, g, ta, tb, tick, sweep, bound,
                                        lifting)
         return pending
 
@@ -572,6 +626,7 @@ class _Kernels:
         Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
         Keys = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
         Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
+        Queue = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
         made = []
 
         def kernel(function):
@@ -624,50 +679,46 @@ class _Kernels:
             bound = ti.math.inf
             if not run[1]:
                 bound = _settling_bound(stamps, keys, header, run[0], band)
-            return settle_all(values, pen, stamps, keys, header, cap, run[0], run[1], bound, False)
+            return settle_all(values, pen, stamps, keys, header, None, cap, run[0], run[1], bound)
 
         @kernel
-        def settle_serially(values: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints,
-                            cap: ti.f32, run: ti.types.vector(8, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, mirror,
-            focus row, focus col)): up to ``rounds`` rounds until settled, until more than ``limit`` tiles are
-            active, or - with a focus (padded layer coordinates; row -1: none), once lowering - until no pending
-            tile can change the focus's value or successors: every active tile keyed, and the lowest priority at
-            least the focus's value (a pending cell can only fall to key + 1 or more, and a way from the focus
-            through it is at least its distance longer). A raise wave that ends hands its tiles to lowering in the
-            same launch (``key_for_lowering``, the tiles active since round ``since``); with ``mirror`` (a small
-            layer), unless stopped by ``limit``, the tiles stamped since ``since`` are then copied into ``dst``.
-            result = (rounds done, still lifting, settled, mirrored, stopped at the focus)."""
+        def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
+                            cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, focus row,
+            focus col)): up to ``rounds`` rounds until settled, until more than ``limit`` tiles are active, or - with
+            a focus (padded layer coordinates; row -1: none), once lowering - until no pending tile can change the
+            focus's value or successors: every active tile keyed, and the lowest priority at least the focus's value
+            (a pending cell can only fall to key + 1 or more, and a way from the focus through it is at least its
+            distance longer). Each round works through a list of its active tiles (``queue``, built as the round
+            before stamps them), so a small repair on a large map does not pass over every tile each round. A
+            raise wave that ends hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles
+            active since round ``since``). result = (rounds done, still lifting, settled, stopped at the focus)."""
             tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
-            header[FOCUS_ROW], header[FOCUS_COL] = run[6], run[7]
-            done, settled, busy, focused = 0, 0, 0, 0
+            header[FOCUS_ROW], header[FOCUS_COL] = run[5], run[6]
+            done, settled, focused = 0, 0, 0
+            _list_active(stamps, queue, tick)
             while done < rounds and settled == 0:
-                scan = _round_scan(stamps, keys, header, tick + done)
+                scan = _round_scan(stamps, keys, header, queue, tick + done)
                 if scan[0] > limit:
-                    busy = 1
                     break
-                if not lifting and scan[0] > 0 and run[6] >= 0 and scan[2] == 0:
-                    if scan[1] >= lowest(values[0, run[6], run[7]]):
+                if not lifting and scan[0] > 0 and run[5] >= 0 and scan[2] == 0:
+                    if scan[1] >= lowest(values[0, run[5], run[6]]):
                         focused = 1
                         break
                 bound = ti.math.inf
                 if not lifting:
                     bound = scan[1] + band
-                touched = settle_all(values, pen, stamps, keys, header, cap, tick + done, lifting, bound, True)
+                touched = settle_all(values, pen, stamps, keys, header, queue, cap, tick + done, lifting, bound)
                 done += 1
                 if touched == 0:
                     if lifting:
                         for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
                             key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b)
+                        _list_active(stamps, queue, tick + done)
                         lifting = 0
                     else:
                         settled = 1
-            mirrored = 0
-            if run[5] and not busy:  # inside an if: the loop stays on this thread
-                for row in range(stamps.shape[0] * stamps.shape[1]):
-                    mirror_row(values, dst, stamps, since, row)
-                mirrored = 1
-            result[0], result[1], result[2], result[3], result[4] = done, lifting, settled, mirrored, focused
+            result[0], result[1], result[2], result[3] = done, lifting, settled, focused
 
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -690,7 +741,7 @@ class _Kernels:
                              header: ti.template(), cap, since, tick, g, a, b):
             """After a raise wave: tile (g, a, b), if active since round ``since`` (active before the wave, or
             reached by it), is handed to lowering - active for round ``tick`` with its key (``lowering_key``) if it
-            can fall, else stamped ``tick`` - 1: inactive from now on, but still mirrored at the end (the wave may
+            can fall, else stamped ``tick`` - 1: inactive from now on, but still counted as touched (the wave may
             have lifted it). Without keys every reached tile was due at once, and the first round swept the whole
             lifted region in one direction before the buckets ordered anything (maze, a wall across the busiest
             corridor: a repair cost more than a restart)."""
@@ -707,26 +758,6 @@ class _Kernels:
             wave that ended in a parallel round."""
             for g, a, b in stamps:
                 key_for_lowering(values, stamps, keys, header, cap, run[0], run[1], g, a, b)
-
-        @ti.func
-        def mirror_row(src: ti.template(), dst: ti.template(), stamps: ti.template(), tick, row):
-            """Copy into ``dst`` the cells of the tiles of row ``row`` (of all groups' rows of tiles) stamped for
-            ``tick`` or later (the only ones settling can have changed since round ``tick``)."""
-            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-            g, ta = row // stamps.shape[1], row % stamps.shape[1]
-            for tb in range(stamps.shape[2]):
-                if stamps[g, ta, tb] >= tick:
-                    for u, v in ti.ndrange(TILE, TILE):
-                        r, c = ta * TILE + u + PAD, tb * TILE + v + PAD
-                        if r < rows + PAD and c < cols + PAD:
-                            dst[g, r, c] = src[g, r, c]
-
-        @kernel
-        def mirror(src: Values, dst: Values, stamps: Stamps, tick: ti.i32):
-            """After settling since round ``tick``: both buffers made equal, a row of tiles per thread (a
-            struct-for would hand out single tiles)."""
-            for row in range(stamps.shape[0] * stamps.shape[1]):
-                mirror_row(src, dst, stamps, tick, row)
 
         @kernel
         def gather_penalties(pen: Penalties, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
@@ -863,6 +894,8 @@ class _Layers:
         self.origins = _device(self.grid_origins)
         self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
         self.keys = ti.ndarray(ti.f32, self.stamps.shape)
+        self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
+        self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
         self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
@@ -940,8 +973,8 @@ class _Layers:
         it)."""
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
-        for values in (self.src, self.dst):
-            values.fill(self.cap)
+        self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
+        self.mirrored = False
         self.stamps.fill(-1)
         self.keys.fill(math.inf)
         self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
@@ -980,6 +1013,9 @@ class _Layers:
             self._count_iterations(k)
             return
         self._idle_sample = None
+        if not self.mirrored:  # settling wrote the values' buffer only
+            self.dst.copy_from(self.src)
+            self.mirrored = True
         if self.pending:  # a converge's keys do not survive Jacobi iterations: every tile due, as after a reset
             self.activate_all()
 
@@ -1012,7 +1048,9 @@ class _Layers:
         chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
         as from the initial state, bit for bit. Lowering starts from the tiles active at the start or reached by the
         raise wave that can fall, in order of their keys (``key_for_lowering``). A small layer's converge is one
-        launch (``settle_serially``: raise wave, hand-over, lowering, mirror). With no obstacle painted and no source
+        launch (``settle_serially``: raise wave, hand-over, lowering). Settling works in place in the values' buffer;
+        the other is made equal before the next busy iteration, if any (:meth:`iterate`), not here: a planner that
+        only converges never pays for it. With no obstacle painted and no source
         moved since the last reset or raise wave, no value can be below its relaxation, and the raise wave is
         skipped.
 
@@ -1023,20 +1061,18 @@ class _Layers:
         self._idle_sample = None
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick if self.repair_since is None else self.repair_since
-        small = math.prod(self.stamps.shape) <= _serial_limit(self._serial_tiles())
-        state = {"lifting": int(self.raised), "mirrored": False, "focused": False}
-        result = np.zeros(5, np.int32)
+        state = {"lifting": int(self.raised), "focused": False}
+        result = np.zeros(4, np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
-            self.kernels.settle_serially(**arrays, dst=self.dst, result=result,
-                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, int(small),
-                                              *aim))
+            self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
+                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, *aim))
             self.tick += int(result[0])
-            state["lifting"], state["mirrored"], state["focused"] = int(result[1]), bool(result[3]), bool(result[4])
-            return int(result[0]), bool(result[2] or result[4])
+            state["lifting"], state["focused"] = int(result[1]), bool(result[3])
+            return int(result[0]), bool(result[2] or result[3])
 
         def in_parallel(done: int) -> bool:
             pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
@@ -1050,8 +1086,7 @@ class _Layers:
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
         self.raised, self.cut_short = bool(state["lifting"]), not finished
-        if not state["mirrored"]:
-            self.kernels.mirror(src=self.values, dst=self.dst, stamps=self.stamps, tick=first)
+        self.mirrored = False
         if finished and not state["focused"]:
             self.deactivate_all()
             self.pending, self.repair_since = False, None
