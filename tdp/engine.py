@@ -309,8 +309,11 @@ def _enqueue(queue: ti.template(), tick, tile):
 
 @ti.func
 def _list_active(stamps: ti.template(), queue: ti.template(), tick):
-    """Make round ``tick``'s work list the tiles stamped for it (one pass over every tile); returns their number."""
-    queue[tick % 2, queue.shape[1] - 1] = 0
+    """Make round ``tick``'s work list the tiles stamped for it (one pass over every tile, on the calling thread:
+    appending is not atomic) and empty the next round's; returns their number."""
+    queue[0, queue.shape[1] - 1] = 0
+    queue[1, queue.shape[1] - 1] = 0
+    ti.loop_config(serialize=True)
     for g in range(stamps.shape[0]):
         for a in range(stamps.shape[1]):
             for b in range(stamps.shape[2]):
@@ -1004,6 +1007,9 @@ class _Layers:
         each; header[CHANGED] then holds the cells the last iteration changed. An idle layer kind (:meth:`idle`)
         launches no iteration: every step reads what it holds, sampled once and kept while it stays idle at the same
         ``cells`` (a launch costs 0.1-0.2 ms, most of an idle tick on nav2's warehouse map)."""
+        if not self.mirrored:  # settling and resets write the values' buffer only
+            self.dst.copy_from(self.src)
+            self.mirrored = True
         if self.idle():
             key = cells.tobytes()
             if self._idle_sample is None or self._idle_sample[0] != key:
@@ -1013,9 +1019,6 @@ class _Layers:
             self._count_iterations(k)
             return
         self._idle_sample = None
-        if not self.mirrored:  # settling wrote the values' buffer only
-            self.dst.copy_from(self.src)
-            self.mirrored = True
         if self.pending:  # a converge's keys do not survive Jacobi iterations: every tile due, as after a reset
             self.activate_all()
 
