@@ -23,7 +23,7 @@ from .stencil import escape_move, moves
 
 #: With a budget, the first converge of a tick runs at most this many rounds before the time is looked at; later
 #: ones as many as the rate so far says fit in what is left.
-FIRST_ROUNDS = 4
+FIRST_ROUNDS = 1
 
 
 class ExactPlanner:
