@@ -5,14 +5,16 @@
 nav2's warehouse map (benchmarks/data/nav2_maps, inflated by 0.2 m), start and goal random cells of the largest free
 region, two worlds per seed (:func:`tdp.random_worlds.boxes_on_map`): six boxes shuttling over free ground all the
 time ("boxes"), and one box appearing in a narrow place of the robot's route a third of the way along and staying
-there ("appear"; run for twice as many ticks so that the robot meets it). Per world, accelerating nodes (25, the
-default) and plain DP at K = 4, and accelerating nodes with a time budget of 1 ms per tick instead of a fixed K:
+there ("appear"; run for twice as many ticks so that the robot meets it). Per world, exact replanning (unbudgeted
+and with a 1 ms budget), accelerating nodes (25 nodes) and plain DP at K = 4, and accelerating nodes with a time
+budget of 1 ms per tick instead of a fixed K:
 
 * setup: ``Navigator(...)`` (node placement, windows) plus ``setup()`` (every layer converged), warm: a first
   navigator of the same kind compiled every kernel in this process;
-* tick: the planner's time per tick (DP iterations, monitor, search; handing over the map's changes is reported
-  apart), median, 95th percentile and maximum over the run's ticks (TICKS at most, twice that in "appear" worlds;
-  fewer when the robot arrives);
+* tick: the planner's ``tick()`` (the exact planner's repair and successor; the DP planners' iterations,
+  monitor, search), median, 95th percentile and maximum over the run's ticks (TICKS at most, twice that in
+  "appear" worlds; fewer when the robot arrives); apart, the map hand-over: the planner's ``update_map`` of the
+  tick's changed cells (building the world's map and finding those cells is the harness's, left out);
 * side by side, what recomputing instead of iterating would cost: a from-scratch ``converge()`` of the goal field
   on the same map, and scipy's Dijkstra solve on the 16-neighbour graph.
 

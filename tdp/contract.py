@@ -7,6 +7,7 @@ then asks :meth:`Planner.tick` where to go. :class:`WorldFeed` does the first tw
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import Protocol, Sequence
@@ -104,12 +105,14 @@ class WorldFeed:
     def __init__(self, occupied: np.ndarray, target: tuple[int, int]):
         self.occupied = np.array(occupied, bool)
         self.target = tuple(target)
+        self.planner_s = 0.0  # seconds the last update spent in the planner's update_map and set_goal
 
     def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int]) -> bool:
         """Send ``planner`` the changes from the last state to ``occupied`` and ``target``; return whether the
         target moved."""
         occupied = np.asarray(occupied, bool)  # kept as it is, not copied: a runner hands a fresh map every tick
         changed = np.argwhere(occupied != self.occupied)
+        began = time.perf_counter()
         if len(changed):
             planner.update_map(changed, occupied[changed[:, 0], changed[:, 1]])
         self.occupied = occupied
@@ -117,4 +120,5 @@ class WorldFeed:
         if moved:
             self.target = tuple(target)
             planner.set_goal(self.target)
+        self.planner_s = time.perf_counter() - began
         return moved

@@ -84,8 +84,9 @@ _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 _SETTLED = 1e38
 #: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
 #: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
-#: none): the cell whose value and successor chain a focused repair settles first and stops at.
-CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL = 0, 1, 2, 3, 4
+#: none): the cell whose value and successor chain a focused repair settles first and stops at; and the tiles a
+#: serial settling launch has settled so far, and how many it may (0: no limit).
+CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL, SETTLED_TILES, TILE_ALLOWANCE = 0, 1, 2, 3, 4, 5, 6
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
@@ -308,6 +309,12 @@ def _enqueue(queue: ti.template(), tick, tile):
 
 
 @ti.func
+def _spent(header: ti.template()):
+    """Whether a serial settling launch has settled all the tiles it may (header[TILE_ALLOWANCE], 0: no limit)."""
+    return header[TILE_ALLOWANCE] > 0 and header[SETTLED_TILES] >= header[TILE_ALLOWANCE]
+
+
+@ti.func
 def _list_active(stamps: ti.template(), queue: ti.template(), tick):
     """Make round ``tick``'s work list the tiles stamped for it (one pass over every tile, on the calling thread:
     appending is not atomic) and empty the next round's; returns their number."""
@@ -484,7 +491,8 @@ def _tile_rules(cell: dict) -> dict:
         Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
         source and a cell's relaxation never raises it (the caller guarantees that no value is below its
         relaxation), so races between threads are benign and the tiles settle to the unique fixed point of eqs. 5
-        and 10; the order (keys, directions) only decides how fast.
+        and 10; the order (keys, directions) only decides how fast. Once a serial launch's tile allowance is spent
+        (``_spent``), every active tile left in the round is deferred, keys and all.
 
         Lifting (``lifting`` 1), the raise wave of a repair: a lane whose relaxation is above its value (it lost the
         move it was the minimum of) jumps to the cap (the tiles the wave reaches are lowered next:
@@ -493,13 +501,18 @@ def _tile_rules(cell: dict) -> dict:
         """
         pending = 0
         if stamps[g, ta, tb] >= tick:
-            if keys[g, ta, tb] < ti.math.inf and _priority(keys, header, g, ta, tb) > bound:
+            spent = 0
+            if ti.static(_given(queue)):
+                spent = _spent(header)
+            if spent or (keys[g, ta, tb] < ti.math.inf and _priority(keys, header, g, ta, tb) > bound):
                 _stamp(stamps, queue, g, ta, tb, tick + 1)
                 pending = 1
             else:
                 rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
                 passes, changed_here = 0, 1
                 keys[g, ta, tb] = _SETTLED  # wakes from here on lower it; earlier ones are taken in now
+                if ti.static(_given(queue)):
+                    header[SETTLED_TILES] += 1
                 while changed_here and passes < 4 * TILE:
                     changed_here = 0
                     for k in range(TILE * TILE):
@@ -536,24 +549,24 @@ def _tile_rules(cell: dict) -> dict:
         ``lifting``). With a ``queue`` (None: a parallel loop over every tile, at a kernel's top level) the round
         runs on the calling thread over its work list, or, when that holds over a quarter of the tiles, over every
         tile in the round's diagonal direction (``_oriented``, as fast sweeping); it builds the next round's list
-        as it goes. Returns the number of tiles that changed or wait (0: settled)."""
+        as it goes; once the launch's tile allowance is spent (``_spent``) the rest of the round is carried over to
+        the next. Returns the number of tiles that changed or wait (0: settled)."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
         if ti.static(_given(queue)):
             listed = queue[tick % 2, queue.shape[1] - 1]
-            if 4 * listed > stamps.shape[0] * tiles_a * tiles_b:
-                for g in range(stamps.shape[0]):
-                    for a in range(tiles_a):
-                        for b in range(tiles_b):
-                            ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
-                            pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick,
-                                                   sweep, bound, lifting)
-            else:
-                for k in range(listed):
+            total = stamps.shape[0] * tiles_a * tiles_b
+            for k in range(total if 4 * listed > total else listed):
+                g, ta, tb = 0, 0, 0
+                if 4 * listed > total:
+                    g = k // (tiles_a * tiles_b)
+                    ta = _oriented((k // tiles_b) % tiles_a, tiles_a, sweep, 1)
+                    tb = _oriented(k % tiles_b, tiles_b, sweep, 2)
+                else:
                     g, ta, tb = _listed_tile(stamps, queue, tick, k)
-                    pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep,
-                                           bound, lifting)
+                pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep, bound,
+                                       lifting)
             queue[tick % 2, queue.shape[1] - 1] = 0
         else:
             for g, a, b in stamps:
@@ -686,19 +699,23 @@ class _Kernels:
 
         @kernel
         def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
-                            cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
+                            cap: ti.f32, run: ti.types.vector(8, ti.i32), result: Ints):
             """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, focus row,
-            focus col)): up to ``rounds`` rounds until settled, until more than ``limit`` tiles are active, or - with
+            focus col, tiles)): up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the
+            round left when they are spent wait for the next round, in the next launch) until settled, until more
+            than ``limit`` tiles are active, or - with
             a focus (padded layer coordinates; row -1: none), once lowering - until no pending tile can change the
             focus's value or successors: every active tile keyed, and the lowest priority at least the focus's value
             (a pending cell can only fall to key + 1 or more, and a way from the focus through it is at least its
             distance longer). Each round works through a list of its active tiles (``queue``, built as the round
             before stamps them), so a small repair on a large map does not pass over every tile each round. A
             raise wave that ends hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles
-            active since round ``since``). result = (rounds done, still lifting, settled, stopped at the focus)."""
+            active since round ``since``). result = (rounds done, still lifting, settled, stopped at the focus,
+            tiles settled, stopped by ``tiles``)."""
             tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
             header[FOCUS_ROW], header[FOCUS_COL] = run[5], run[6]
-            done, settled, focused = 0, 0, 0
+            header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[7]
+            done, settled, focused, cut = 0, 0, 0, 0
             _list_active(stamps, queue, tick)
             while done < rounds and settled == 0:
                 scan = _round_scan(stamps, keys, header, queue, tick + done)
@@ -713,6 +730,9 @@ class _Kernels:
                     bound = scan[1] + band
                 touched = settle_all(values, pen, stamps, keys, header, queue, cap, tick + done, lifting, bound)
                 done += 1
+                if _spent(header):
+                    cut = 1
+                    break
                 if touched == 0:
                     if lifting:
                         for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
@@ -722,6 +742,7 @@ class _Kernels:
                     else:
                         settled = 1
             result[0], result[1], result[2], result[3] = done, lifting, settled, focused
+            result[4], result[5] = header[SETTLED_TILES], cut
 
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -899,7 +920,7 @@ class _Layers:
         self.keys = ti.ndarray(ti.f32, self.stamps.shape)
         self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
-        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS], np.int32))
+        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
         # (cells as bytes, this kind's values there) sampled while idle; dropped by everything that changes values:
@@ -912,7 +933,8 @@ class _Layers:
         # keys for the next converge; ``repair_since`` is the first round of a raise wave still under way (the
         # tiles it lifted are handed to lowering when it ends), None when none is.
         self.pending = False
-        self.cut_short = False  # the last converge stopped at max_rounds (not at the fixed point or its focus)
+        self.cut_short = False  # the last converge stopped at max_rounds or max_tiles (not at its fixed point or focus)
+        self.settled_tiles = 0  # tiles the last converge settled on the calling thread
         self.repair_since: int | None = None
         self.activate_all()
 
@@ -1040,7 +1062,7 @@ class _Layers:
         return dict(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                     origins=self.origins, cap=self.cap)
 
-    def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None) -> int:
+    def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
         """Repair: from the current values to the fixed point, in time that grows with the region the edits since
         the last converge affect. Returns the rounds done (lifting and lowering), at most ``max_rounds``.
 
@@ -1060,22 +1082,27 @@ class _Layers:
         With ``focus`` (padded layer coordinates), lowering takes the tiles in order of key plus distance from the
         focus and stops once no pending tile can change the focus's value or successor chain (``settle_serially``):
         the rest stays pending (:attr:`pending`), keys and all, for the next converge. So does a converge cut short
-        by ``max_rounds``, a raise wave under way included (:attr:`repair_since`)."""
+        by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles settled (0: no limit; the rest of the round
+        waits for the next converge), a raise wave under way included (:attr:`repair_since`);
+        :attr:`settled_tiles` counts the tiles it settled on the calling thread."""
         self._idle_sample = None
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick if self.repair_since is None else self.repair_since
-        state = {"lifting": int(self.raised), "focused": False}
-        result = np.zeros(4, np.int32)
+        state = {"lifting": int(self.raised), "focused": False, "cut": False}
+        result = np.zeros(6, np.int32)
+        self.settled_tiles = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
             self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
-                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, *aim))
+                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, *aim,
+                                              max_tiles))
             self.tick += int(result[0])
-            state["lifting"], state["focused"] = int(result[1]), bool(result[3])
-            return int(result[0]), bool(result[2] or result[3])
+            self.settled_tiles += int(result[4])
+            state["lifting"], state["focused"], state["cut"] = int(result[1]), bool(result[3]), bool(result[5])
+            return int(result[0]), bool(result[2] or result[3] or result[5])
 
         def in_parallel(done: int) -> bool:
             pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
@@ -1088,9 +1115,9 @@ class _Layers:
             return False
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
-        self.raised, self.cut_short = bool(state["lifting"]), not finished
+        self.raised, self.cut_short = bool(state["lifting"]), state["cut"] or not finished
         self.mirrored = False
-        if finished and not state["focused"]:
+        if finished and not state["focused"] and not state["cut"]:
             self.deactivate_all()
             self.pending, self.repair_since = False, None
         else:
@@ -1259,7 +1286,8 @@ class Engine:
         """Cells changed by the last iteration, all layers together."""
         return sum(layers.changed() for layers in self._layers)
 
-    def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None) -> int:
+    def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None,
+                 max_tiles: int = 0) -> int:
         """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
         exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds it took
         (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
@@ -1268,6 +1296,10 @@ class Engine:
         Euclidean distance from the cell and stops as soon as nothing pending can change the cell's value or the
         successors from it to the goal: they are then those of the fixed point exactly, and the rest of the layer
         waits (:meth:`pending`) until a later converge needs it. Node layers always converge fully.
+
+        ``max_tiles`` (0: no limit) stops the goal layer's settling on the calling thread after that many tiles, in
+        the middle of a round if need be (:meth:`cut_short` then says so, and the next converge goes on): the
+        unit of an anytime repair's budget, since a round can be long. :meth:`settled_tiles` counts them.
 
         Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
         of SETTLE_BAND, PACKED_SETTLE_BAND for node layers, and alternating diagonal directions) and wakes the
@@ -1280,7 +1312,7 @@ class Engine:
             self._goal.reset()
             self._goal_moved = False
         focused = None if focus is None else (int(focus[0]) + PAD, int(focus[1]) + PAD)
-        rounds = max(layers.converge(max_rounds, focused if layers is self._goal else None)
+        rounds = max(layers.converge(max_rounds, *((focused, max_tiles) if layers is self._goal else (None, 0)))
                      for layers in self._layers)
         self.iterations = 0
         return rounds
@@ -1291,8 +1323,13 @@ class Engine:
         return any(layers.pending for layers in self._layers)
 
     def cut_short(self) -> bool:
-        """Whether the last :meth:`converge` stopped at ``max_rounds``, before the fixed point or its focus."""
+        """Whether the last :meth:`converge` stopped at ``max_rounds`` or ``max_tiles``, before the fixed point or
+        its focus."""
         return any(layers.cut_short for layers in self._layers)
+
+    def settled_tiles(self) -> int:
+        """Tiles of the goal layer the last :meth:`converge` settled on the calling thread."""
+        return self._goal.settled_tiles
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

@@ -59,7 +59,7 @@ def test_a_tight_budget_still_reaches_without_collision_and_catches_up(family):
     """With a budget far below a repair's time the robot follows the layer as far as the repair got (mode behind),
     never collides, and is exact again at later ticks."""
     scenario = make_world(family, 100, 4)
-    config = tdp.NavigatorConfig(planner="exact", budget_ms=0.001)
+    config = tdp.NavigatorConfig(planner="exact", budget_ms=0.1)
     planner = tdp.make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
     planner.setup()
     record = run_planner(scenario, planner, config, scenario.tick_limit)

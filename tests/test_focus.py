@@ -27,6 +27,14 @@ def route(engine: Engine, robot: tuple[int, int]) -> tuple[float, list[tuple[int
     return value, engine.trace(0, robot, engine.occupied.size)
 
 
+def repair_in_slices(engine: Engine, robot: tuple[int, int], tiles: int) -> None:
+    """converge(focus=robot), in slices of at most ``tiles`` settled tiles (0: one go) until it is through."""
+    engine.converge(focus=robot, max_tiles=tiles)
+    while engine.cut_short():
+        assert engine.settled_tiles() <= tiles
+        engine.converge(focus=robot, max_tiles=tiles)
+
+
 def assert_same_route(engine: Engine, robot: tuple[int, int], options: dict) -> None:
     fresh = Engine(engine.occupied, engine.goal, **options)
     fresh.converge()
@@ -41,9 +49,11 @@ def assert_same_route(engine: Engine, robot: tuple[int, int], options: dict) -> 
 @pytest.mark.parametrize("serially", [True, False])
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
-@given(focus_sequences(), st.sampled_from([4, 8, 16]), st.booleans())
+@given(focus_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.sampled_from([0, 1, 3]))
 def test_focused_repair_gives_the_robot_the_route_of_a_full_converge(monkeypatch, serially, sequence, neighbourhood,
-                                                                    corner_cutting):
+                                                                    corner_cutting, slice_tiles):
+    """... also when the repair runs in slices of ``slice_tiles`` settled tiles (0: in one go), as an anytime
+    planner's budget cuts it, in the middle of raise waves and lowering rounds."""
     launch_rounds(monkeypatch, serially)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
@@ -54,14 +64,14 @@ def test_focused_repair_gives_the_robot_the_route_of_a_full_converge(monkeypatch
     engine = Engine(occupied, goal, **options)
     free = np.argwhere(~occupied)
     robot = tuple(int(v) for v in free[rng.integers(len(free))])
-    engine.converge(focus=robot)
+    repair_in_slices(engine, robot, slice_tiles)
     assert_same_route(engine, robot, options)
     for operation in operations:
         if operation == "robot":
             robot = (int(rng.integers(rows)), int(rng.integers(cols)))
         else:
             apply(operation, engine, rng)
-        engine.converge(focus=robot)
+        repair_in_slices(engine, robot, slice_tiles)
         assert_same_route(engine, robot, options)
     engine.converge()
     assert not engine.pending()
