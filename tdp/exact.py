@@ -21,8 +21,8 @@ from .grid import GridMap
 from .navigator import NavigatorConfig
 from .stencil import escape_move, moves
 
-#: With a budget, the first slice of a tick's repair settles at most this many 8 x 8 tiles before the time is looked
-#: at (about 3-10 µs each on the 2-core VM); later slices as many as the rate so far says fit in what is left.
+#: With a budget, a slice of a tick's repair settles at least this many 8 x 8 tiles (3-20 µs each on the 2-core VM),
+#: and as many more as the rate measured so far says fit in what is left after a slice's fixed cost.
 FIRST_TILES = 32
 
 
@@ -67,7 +67,8 @@ class ExactPlanner:
         self.nodes = np.zeros((0, 2), np.int32)
         self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
         self._moves = moves(config.neighbourhood, config.corner_cutting)
-        self._tile_s = 0.0  # seconds per tile settled in the last budgeted slice that settled any
+        self._tile_s = 0.0  # seconds per tile settled, beyond the fixed cost, in the last slice that settled any
+        self._slice_s = 0.0  # the fixed cost of a slice (a converge launch with nothing to settle), from setup()
         # The cells whose route to the goal the last repair left exact (the robot's cell and its next step), or
         # none since an edit or a goal move: a tick that finds the robot on one of them has nothing to repair.
         self._exact_from: tuple[tuple[int, int], ...] = ()
@@ -79,7 +80,14 @@ class ExactPlanner:
     def setup(self) -> int:
         """Compile the engine's kernels and converge the goal layer fully; returns the rounds it took."""
         self.engine.warm_up()
-        return self.engine.converge()
+        rounds = self.engine.converge()
+        idle = []
+        for _ in range(3):  # a converge with nothing to do: what every slice of a budgeted repair costs at least
+            began = time.perf_counter()
+            self.engine.converge(max_tiles=FIRST_TILES)
+            idle.append(time.perf_counter() - began)
+        self._slice_s = min(idle)
+        return rounds
 
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
@@ -126,19 +134,23 @@ class ExactPlanner:
             self.engine.converge(focus=focus)
             return True
         deadline = began + self.config.budget_ms / 1e3
-        tiles = FIRST_TILES
         while True:
             sliced = time.perf_counter()
-            self.engine.converge(focus=focus, max_tiles=tiles)
+            self.engine.converge(focus=focus, max_tiles=self._tiles_fitting(deadline - sliced))
             now = time.perf_counter()
             if not self.engine.cut_short():
                 return True
             if self.engine.settled_tiles():
-                self._tile_s = (now - sliced) / self.engine.settled_tiles()
-            left = deadline - now
-            if left <= self._tile_s * FIRST_TILES:
+                self._tile_s = max(now - sliced - self._slice_s, 0.0) / self.engine.settled_tiles()
+            if deadline - now <= self._slice_s + FIRST_TILES * self._tile_s:
                 return False
-            tiles = max(FIRST_TILES, int(left / self._tile_s)) if self._tile_s > 0 else 2 * tiles
+
+    def _tiles_fitting(self, left_s: float) -> int:
+        """How many tiles a slice may settle in ``left_s`` seconds at the rate measured so far (FIRST_TILES at
+        least, and while nothing is measured)."""
+        if self._tile_s <= 0:
+            return FIRST_TILES
+        return max(FIRST_TILES, int((left_s - self._slice_s) / self._tile_s))
 
     def _distances(self, cells: list) -> np.ndarray:
         """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""
