@@ -28,6 +28,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.sweep
 	$(PY) -m benchmarks.predict
 	$(PY) -m benchmarks.warehouse
+	$(PY) -m benchmarks.equal_time
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick

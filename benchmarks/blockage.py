@@ -33,7 +33,8 @@ def run_scenario(name: str, ks: list[int], variants: dict) -> list[dict]:
     rows.append({"scenario": name, "planner": "D* Lite (Python)", "k": None,
                  **blockage_metrics(scenario, run_planner(scenario, dstar, base, scenario.max_ticks),
                                     oracle["length"], route)})
-    run_navigator(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=1))  # warm-up: caches (setup() compiles the kernels)
+    warm = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1)
+    run_navigator(scenario, warm)  # warm-up: caches (setup() compiles the kernels)
     for k in ks:
         for label, options in variants.items():
             config = tdp.NavigatorConfig(**{"planner": "accelerating", "updates_per_move": k, **options})

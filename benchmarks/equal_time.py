@@ -4,20 +4,21 @@
 
 One process, the engine's threads (TDP_THREADS, default 2), warm (each planner kind's kernels compiled before any
 timing). Planners: exact replanning unbudgeted and with budgets of BUDGETS_MS per tick; accelerating nodes and
-plain DP at K = 1 and 4 and with budgets of DP_BUDGETS_MS (at least one iteration a tick whatever the budget); D* Lite
-(plain Python) on maps of at most DSTAR_MAX_SIDE cells a side. Worlds: the six random-world families at 100 and 200
-(SEEDS: three at 100, two at 200), the named scenarios, quick worlds with BOXES shuttling boxes and a box appearing on the route on MovingAI
-maps (arena and den312d from tests/data, and from ../shared/data when present maze512-32-0, random512-10-0 and
-8room_000, start and goal from their longest scenario), and nav2's warehouse and depot maps (inflated by 0.2 m,
-start and goal from the largest free region) with six shuttling boxes and with a box appearing. On maps of more
-than LARGE cells the DP planners run K = 1 and a budget of 1 ms only (a tick costs tens of milliseconds there).
+plain DP at K = 1 and 4 and with budgets of DP_BUDGETS_MS (at least one iteration a tick whatever the budget);
+D* Lite (plain Python) on maps of at most DSTAR_MAX_SIDE cells a side. Worlds: the six random-world families at
+100 and 200 (SEEDS: three at 100, two at 200), the named scenarios, quick worlds with BOXES shuttling boxes and
+with a box appearing on the route on MovingAI maps (arena and den312d from tests/data, and from ../shared/data
+when present maze512-32-0, random512-10-0 and 8room_000, start and goal from their longest scenario), and nav2's
+warehouse and depot maps (inflated by 0.2 m, start and goal from the largest free region) with six shuttling
+boxes and with a box appearing. On maps of more than LARGE cells the DP planners run K = 1 and a budget of 1 ms
+only (a tick costs tens of milliseconds there).
 
 Per world, the exact planner (unbudgeted: the oracle) is checked against a goal field converged fully every tick
-(``benchmarks.reference_planner``): the same trajectory, tick for tick. Per world group and planner setting: reached %, mean and max ratio to the oracle (the exact planner unbudgeted),
-collisions, and the planner's time per tick - everything it does in a tick, the map's changes handed over
-included - pooled over the group's ticks: median, 95th percentile and maximum; and apart, the longest tick()
-alone (what a budget bounds). Figure: the mean ratio against the median ms per tick, one panel per group (the
-Pareto view).
+(``benchmarks.reference_planner``): the same trajectory, tick for tick. Per world group and planner setting:
+reached %, mean and max ratio to the oracle, collisions, and the planner's time per tick - its tick() and its
+update_map of the tick's changed cells - pooled over the group's ticks: median, 95th percentile and maximum; and
+apart, the longest tick() alone (what a budget bounds). Figure: the mean ratio against the median and the 95th
+percentile of ms per tick, one column per group (the Pareto view).
 
 --quick: two small worlds, four settings, a few dozen ticks.
 """
@@ -187,26 +188,28 @@ def summarise(rows: list[dict]) -> list[dict]:
 
 
 def figure(summary: list[dict], path: Path) -> None:
-    """Mean ratio against median ms per tick, one panel per world group, a marker per setting."""
+    """Mean ratio against the median (top) and the 95th percentile (bottom) of ms per tick, one column per world
+    group, a marker per setting: the Pareto view (down and left is better)."""
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
     groups = list(dict.fromkeys(s["group"] for s in summary))
-    fig, axes = plt.subplots(1, len(groups), figsize=(4.2 * len(groups), 4.2), squeeze=False)
+    fig, axes = plt.subplots(2, len(groups), figsize=(4.2 * len(groups), 8.0), squeeze=False)
     colours = {"exact": "tab:green", "accelerating": "tab:orange", "plain": "tab:blue", "D*": "tab:gray"}
-    for ax, group in zip(axes[0], groups):
-        for s in (s for s in summary if s["group"] == group and s["mean_ratio"] is not None):
-            kind = s["setting"].split()[0]
-            marker = "o" if "ms" in s["setting"] else ("s" if "K=" in s["setting"] else "*")
-            ax.plot(s["ms_median"], s["mean_ratio"], marker, color=colours[kind], ms=7 if marker == "*" else 5,
-                    alpha=1.0 if s["reached_pct"] == 100 else 0.35)
-            ax.annotate(s["setting"].replace("accelerating", "acc.").replace("plain DP", "DP"),
-                        (s["ms_median"], s["mean_ratio"]), fontsize=5, xytext=(3, 2), textcoords="offset points")
-        ax.set_xscale("log")
-        ax.set_xlabel("planner ms per tick (median)")
-        ax.set_title(group, fontsize=9)
-        ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel("mean path length / oracle")
+    for row, (key, name) in enumerate([("ms_median", "median"), ("ms_p95", "95th percentile")]):
+        for ax, group in zip(axes[row], groups):
+            for s in (s for s in summary if s["group"] == group and s["mean_ratio"] is not None):
+                kind = s["setting"].split()[0]
+                marker = "o" if "ms" in s["setting"] else ("s" if "K=" in s["setting"] else "*")
+                ax.plot(s[key], s["mean_ratio"], marker, color=colours[kind], ms=8 if marker == "*" else 5,
+                        alpha=1.0 if s["reached_pct"] == 100 else 0.35)
+                ax.annotate(s["setting"].replace("accelerating", "acc.").replace("plain DP", "DP"),
+                            (s[key], s["mean_ratio"]), fontsize=5, xytext=(3, 2), textcoords="offset points")
+            ax.set_xscale("log")
+            ax.set_xlabel(f"planner ms per tick ({name})")
+            ax.set_title(group, fontsize=9)
+            ax.grid(alpha=0.3)
+        axes[row][0].set_ylabel("mean path length / oracle")
     handles = [plt.Line2D([], [], marker="o", ls="", color=c, label=k) for k, c in colours.items()]
     axes[0][-1].legend(handles=handles, fontsize=7, loc="upper right")
     fig.suptitle("equal time: ratio against time per tick (o: budget, s: fixed K, *: unbudgeted; faint: not every "

@@ -126,9 +126,9 @@ class ExactPlanner:
 
     def _repair(self, began: float) -> bool:
         """Converge focused on the robot, in one go or, with a budget, in slices of settled tiles until it is through
-        or the budget is spent; returns whether the robot's route is exact. Not called when the robot stands on the route the
-        last repair left exact and nothing changed since: stepping along an exact route, every pending tile's
-        priority falls by at most the step, and so does the robot's value (the focus test still holds)."""
+        or the budget is spent; returns whether the robot's route is exact. Not called when the robot stands on the
+        route the last repair left exact and nothing changed since: stepping along an exact route, every pending
+        tile's priority falls by at most the step, and so does the robot's value (the focus test still holds)."""
         focus = None if self.engine.occupied[self.robot] else self.robot  # escaping reads the whole neighbourhood
         if self.config.budget_ms is None:
             self.engine.converge(focus=focus)

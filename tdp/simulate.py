@@ -63,9 +63,9 @@ def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
 
 def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
     """Drive ``planner`` (any :class:`~tdp.contract.Planner`: a :class:`~tdp.navigator.Navigator`, an
-    :class:`~tdp.exact.ExactPlanner`, or a baseline such as D* Lite) through the scenario, tick by tick; returns the raw record
-    (trajectory, modes, length in cells, collisions, hits, ticks, reached, the planner's TickResults, the target's
-    path).
+    :class:`~tdp.exact.ExactPlanner`, or a baseline such as D* Lite) through the scenario, tick by tick; returns the
+    raw record (trajectory, modes, length in cells, collisions, hits, ticks, reached, the planner's TickResults, the
+    target's path).
 
     ``config`` gives the stencil the moves are checked against. Each TickResult's ``timings["update"]`` is the time
     the planner spent taking the tick's map and goal changes (its update_map and set_goal; building the world's
@@ -109,8 +109,8 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     Episode's metrics.
 
     Each tick: the world moves (obstacles, target), the planner plans (the exact planner repairs; the DP planners
-    run K iterations and their monitor), then the robot makes one stencil move, unless that cell is occupied. ``max_ticks`` defaults to the
-    scenario's (or 4 (H + W)). ``progress`` prints a line every 25 ticks to stderr.
+    run K iterations and their monitor), then the robot makes one stencil move, unless that cell is occupied.
+    ``max_ticks`` defaults to the scenario's (or 4 (H + W)). ``progress`` prints a line every 25 ticks to stderr.
     """
     if not isinstance(scenario, Scenario):
         raise ValueError(f"scenario must be a tdp.Scenario, got {type(scenario).__name__}")

@@ -92,7 +92,8 @@ def test_clearing_takes_the_opened_passage(episodes):
 
 
 def test_runs_are_deterministic(episodes):
-    again = tdp.simulate(tdp.scenarios.get("sudden-blockage"), tdp.NavigatorConfig(planner="accelerating", updates_per_move=1))
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1)
+    again = tdp.simulate(tdp.scenarios.get("sudden-blockage"), config)
     first = episodes[("sudden-blockage", 1, True)]
     assert again.trajectory == first.trajectory and again.modes == first.modes
     assert again.detections == first.detections and again.length == first.length
@@ -394,7 +395,8 @@ def test_a_door_closing_on_the_robot_lets_it_drive_on_through_when_that_side_is_
     occupied[12:14, 14:17] = False
     door = tdp.Obstacle(box=(12, 14, 14, 17), appear_at=11)
     scenario = tdp.Scenario(tdp.GridMap(occupied), (2, 15), (27, 15), obstacles=[door], name="door-behind")
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(nodes=4, planner="accelerating" if accelerating else "plain-dp"), max_ticks=120)
+    config = tdp.NavigatorConfig(nodes=4, planner="accelerating" if accelerating else "plain-dp")
+    episode = tdp.simulate(scenario, config, max_ticks=120)
     assert episode.trajectory[10] == (12, 15)  # in the doorway's first row when the door closes
     assert episode.reached and episode.collisions == 0
     assert episode.length == pytest.approx(25.0) and episode.oracle_length == pytest.approx(25.0)
@@ -431,7 +433,8 @@ def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelera
     was given. That cell was taken for one of the map's walls (the escape then failed with a KeyError); a cell freed
     since the start is no wall, and the robot drives out."""
     scenario = make_world("cluttered", 100, 217)
-    episode = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=4, planner="accelerating" if accelerating else "plain-dp"))
+    config = tdp.NavigatorConfig(updates_per_move=4, planner="accelerating" if accelerating else "plain-dp")
+    episode = tdp.simulate(scenario, config)
     assert episode.reached and episode.collisions == 0
 
 
@@ -495,7 +498,7 @@ def test_episode_animation_frames(tmp_path):
     from tdp.animate import MAX_FRAMES, save_episode_animation
 
     scenario = tdp.scenarios.get("static")
-    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating" if a else "plain-dp")) for a in (True, False)]
+    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(planner=planner)) for planner in ("accelerating", "plain-dp")]
     written = save_episode_animation(scenario, episodes, tmp_path / "static.gif")
     assert written[0] == tmp_path / "static.gif"
     ticks = max(e.ticks for e in episodes)

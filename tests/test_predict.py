@@ -137,7 +137,8 @@ def test_the_goal_layer_never_sees_a_prediction():
     """Two navigators fed the same moving boxes, one predicting: their goal layers are equal at every tick."""
     scenario = make_world("crossing", 100, 1)
     grid = tdp.GridMap(scenario.occupancy(0))
-    plain, predicting = (tdp.Navigator(grid, scenario.start, scenario.goal, tdp.NavigatorConfig(planner="accelerating", predict_ticks=h))
+    plain, predicting = (tdp.Navigator(grid, scenario.start, scenario.goal,
+                                       tdp.NavigatorConfig(planner="accelerating", predict_ticks=h))
                          for h in (0, 6))
     feeds = [WorldFeed(scenario.occupancy(0), scenario.goal) for _ in range(2)]
     for navigator in (plain, predicting):
@@ -170,7 +171,8 @@ def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(
     against 55)."""
     box = tdp.Obstacle((12, box_col, 18, box_col + 6), waypoints=((40, box_col),), speed=0.5)
     scenario = tdp.Scenario(tdp.GridMap(np.zeros((44, 60), bool)), (20, 2), (20, 57), obstacles=[box])
-    record, _ = run_navigator(scenario, tdp.NavigatorConfig(planner="accelerating", avoid_boxes=True, updates_per_move=1), 300)
+    config = tdp.NavigatorConfig(planner="accelerating", avoid_boxes=True, updates_per_move=1)
+    record, _ = run_navigator(scenario, config, 300)
     rows = [row for row, _ in record["trajectory"]]
     assert record["reached"] and record["collisions"] == 0 and record["hits"] == 0
     assert 19 <= min(rows) and max(rows) <= 21 and record["length"] < 56.0
@@ -181,7 +183,8 @@ def test_prediction_turns_the_robot_earlier_when_a_box_moves_into_its_passage():
     route = unblocked_route(scenario)
     turns = {}
     for horizon in (0, 4):
-        record, _ = run_navigator(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=1, predict_ticks=horizon))
+        config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1, predict_ticks=horizon)
+        record, _ = run_navigator(scenario, config)
         assert record["reached"]
         turns[horizon] = turn_and_closest(scenario, record["trajectory"], route)["turn_after"]
     assert turns[4] <= turns[0] - 3
