@@ -90,6 +90,8 @@ CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL, SETTLED_TILES, TILE_ALLOW
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
+#: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
+IDLE_ENTRIES = 8
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
 REBASE_AT = 1 << 29
 
@@ -711,7 +713,7 @@ class _Kernels:
             before stamps them), so a small repair on a large map does not pass over every tile each round. A
             raise wave that ends hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles
             active since round ``since``). result = (rounds done, still lifting, settled, stopped at the focus,
-            tiles settled, stopped by ``tiles``)."""
+            tiles settled, stopped by ``tiles``, the index of the focus's successor move: -1 for none)."""
             tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
             header[FOCUS_ROW], header[FOCUS_COL] = run[5], run[6]
             header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[7]
@@ -734,15 +736,19 @@ class _Kernels:
                     cut = 1
                     break
                 if touched == 0:
-                    if lifting:
+                    if lifting:  # hand over to lowering, listing the tiles that can fall as it goes
+                        queue[0, queue.shape[1] - 1], queue[1, queue.shape[1] - 1] = 0, 0
                         for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
-                            key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b)
-                        _list_active(stamps, queue, tick + done)
+                            if key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b):
+                                _enqueue(queue, tick + done, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
                         lifting = 0
                     else:
                         settled = 1
             result[0], result[1], result[2], result[3] = done, lifting, settled, focused
-            result[4], result[5] = header[SETTLED_TILES], cut
+            result[4], result[5], result[6] = header[SETTLED_TILES], cut, -1
+            inside = PAD <= run[5] < values.shape[1] - PAD and PAD <= run[6] < values.shape[2] - PAD
+            if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
+                result[6] = successor_move(values, pen, header, cap, 0, 0, run[5], run[6])
 
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -768,12 +774,13 @@ class _Kernels:
             can fall, else stamped ``tick`` - 1: inactive from now on, but still counted as touched (the wave may
             have lifted it). Without keys every reached tile was due at once, and the first round swept the whole
             lifted region in one direction before the buckets ordered anything (maze, a wall across the busiest
-            corridor: a repair cost more than a restart)."""
+            corridor: a repair cost more than a restart). Returns 1 if the tile is active for round ``tick``."""
             key = ti.math.inf
             if stamps[g, a, b] >= since:
                 key = lowering_key(values, header, cap, g, a, b)
                 stamps[g, a, b] = ti.select(key < ti.math.inf, tick, tick - 1)
             keys[g, a, b] = key
+            return ti.select(key < ti.math.inf, 1, 0)
 
         @kernel
         def prepare_lowering(values: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
@@ -884,13 +891,14 @@ def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool) -> _Kerne
 
 def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
     """A value for a kernel parameter that makes a launch touch nothing that matters: the scratch layer's array or
-    cap of that name, else zeros, or a small zero array of the annotated type (two entries along each axis: no
-    kernel indexes past them)."""
+    cap of that name, else zeros, or a small zero array of the annotated type (IDLE_ENTRIES along each axis: no
+    kernel indexes past them - ``settle_serially`` writes seven results; with two entries, as before, its result
+    writes ran past the array during every warm-up and corrupted the heap)."""
     if hasattr(scratch, parameter.name):
         return getattr(scratch, parameter.name)
     kind = parameter.annotation
     if isinstance(kind, NdarrayType):
-        return np.zeros((2,) * kind.ndim, np.int32 if kind.dtype == ti.i32 else np.float32)
+        return np.zeros((IDLE_ENTRIES,) * kind.ndim, np.int32 if kind.dtype == ti.i32 else np.float32)
     if isinstance(kind, VectorType):
         return ti.Vector([0] * kind.n, dt=kind.dtype)
     if kind == ti.i32 or kind == ti.f32:
@@ -935,6 +943,8 @@ class _Layers:
         self.pending = False
         self.cut_short = False  # the last converge stopped at max_rounds or max_tiles (not at its fixed point or focus)
         self.settled_tiles = 0  # tiles the last converge settled on the calling thread
+        # (focus, index of its successor move) read by the last converge, until anything changes the values
+        self.focus_move: tuple[tuple[int, int], int] | None = None
         self.repair_since: int | None = None
         self.activate_all()
 
@@ -961,7 +971,7 @@ class _Layers:
         """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
         the old one must rise)."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
-        self.raised = True
+        self.raised, self.focus_move = True, None
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""
@@ -990,7 +1000,7 @@ class _Layers:
                            cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
         self.woken = self.tick
         self.raised = self.raised or bool((penalties > 0).any())
-        self._idle_sample = None
+        self._idle_sample = self.focus_move = None
 
     def reset(self) -> None:
         """Both buffers back to the initial state of eqs. 5 and 10; only the tiles within the stencil's reach of the
@@ -1007,7 +1017,7 @@ class _Layers:
         self.woken = self.tick
         self.raised = False
         self.pending, self.repair_since = False, None
-        self._idle_sample = None
+        self._idle_sample = self.focus_move = None
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
         """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
@@ -1029,6 +1039,7 @@ class _Layers:
         each; header[CHANGED] then holds the cells the last iteration changed. An idle layer kind (:meth:`idle`)
         launches no iteration: every step reads what it holds, sampled once and kept while it stays idle at the same
         ``cells`` (a launch costs 0.1-0.2 ms, most of an idle tick on nav2's warehouse map)."""
+        self.focus_move = None
         if not self.mirrored:  # settling and resets write the values' buffer only
             self.dst.copy_from(self.src)
             self.mirrored = True
@@ -1088,8 +1099,8 @@ class _Layers:
         self._idle_sample = None
         limit = _NEVER if max_rounds is None else max_rounds
         first = self.tick if self.repair_since is None else self.repair_since
-        state = {"lifting": int(self.raised), "focused": False, "cut": False}
-        result = np.zeros(6, np.int32)
+        state = {"lifting": int(self.raised), "focused": False, "cut": False, "move": None}
+        result = np.zeros(7, np.int32)
         self.settled_tiles = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
@@ -1102,9 +1113,11 @@ class _Layers:
             self.tick += int(result[0])
             self.settled_tiles += int(result[4])
             state["lifting"], state["focused"], state["cut"] = int(result[1]), bool(result[3]), bool(result[5])
+            state["move"] = int(result[6])
             return int(result[0]), bool(result[2] or result[3] or result[5])
 
         def in_parallel(done: int) -> bool:
+            state["move"] = None
             pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
             self.tick += 1
             if pending or not state["lifting"]:
@@ -1116,6 +1129,8 @@ class _Layers:
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
         self.raised, self.cut_short = bool(state["lifting"]), state["cut"] or not finished
+        # the focus's successor move as the last launch left it (None: unknown, a parallel round came last)
+        self.focus_move = None if focus is None or self.cut_short else (focus, state["move"])
         self.mirrored = False
         if finished and not state["focused"] and not state["cut"]:
             self.deactivate_all()
@@ -1222,6 +1237,7 @@ class Engine:
         self.corner_cutting = bool(corner_cutting)
         self.goal = (int(goal[0]), int(goal[1]))
         self.goal_cap = float(goal_cap)
+        self._moves = stencil.moves(self.neighbourhood, self.corner_cutting)  # the kernels' move order
         self.node_cap = float(node_cap)
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
@@ -1330,6 +1346,21 @@ class Engine:
     def settled_tiles(self) -> int:
         """Tiles of the goal layer the last :meth:`converge` settled on the calling thread."""
         return self._goal.settled_tiles
+
+    def focus_successor(self, focus: tuple[int, int]) -> tuple[int, int] | None:
+        """The goal layer's successor at ``focus``: as the last converge's last launch read it, when that converge
+        was focused there, ran its last launch on the calling thread, and nothing changed the values since (a trace
+        is a launch more: 0.07-0.13 ms); else traced now (:meth:`trace`). None at the goal or where no move leads
+        down."""
+        read = self._goal.focus_move
+        if read is None or read[0] != (focus[0] + PAD, focus[1] + PAD):
+            step = self.trace(0, focus, 1)
+            return step[0] if step else None
+        move = read[1]
+        if move < 0:
+            return None
+        m = self._moves[move]
+        return focus[0] + m.dr, focus[1] + m.dc
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

@@ -113,8 +113,7 @@ class ExactPlanner:
         began = time.perf_counter()
         exact = self.robot in self._exact_from or self._repair(began)
         repaired = time.perf_counter()
-        step = self.route(1)
-        step = step[0] if step else None
+        step = None if self.robot == self.goal else self.engine.focus_successor(self.robot)
         self._exact_from = (self.robot,) + ((step,) if step else ()) if exact else ()
         if self.engine.occupied[self.robot]:
             step = escape_move(self.engine.occupied, self.robot, self._moves, self._distances, self._walls) or step
