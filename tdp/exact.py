@@ -35,7 +35,7 @@ class ExactPlanner:
     ``d_max`` and ``budget_ms`` of the config.
 
     Unbudgeted, every tick's move is the successor of a full converge on that tick's map (mode ``exact``). With
-    ``budget_ms`` a tick repairs for at most about that long (plus a fixed overhead, RESULTS.md "equal time");
+    ``budget_ms`` a tick repairs for at most about that long (its work in 8 x 8 tiles, plus a launch: RESULTS.md §0);
     when the budget runs out before the robot's route is settled, the robot follows the layer as far as the
     repair got (mode ``behind``): once the raise wave is through, every finite value is the length of a real
     route on the current map and the successors only make legal moves down it, so the robot heads along a real
