@@ -204,3 +204,23 @@ def test_sweep_runs_on_an_existing_dask_scheduler(tmp_path):
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
         rows = run_sweep(spec, tmp_path, scheduler=cluster.scheduler_address, log=io.StringIO())
     assert [r["planner"] for r in rows] == ["oracle", "plain-dp"] and all(r["reached"] for r in rows)
+
+
+def test_exact_planner_entries_sweep_budgets_and_match_the_oracle_unbudgeted(tmp_path):
+    """``planner: exact`` reads the stencil, d_max and budget_ms; unbudgeted it drives the oracle's path (ratio 1),
+    and a node field for it is refused with the fields it reads named."""
+    text = """
+worlds: [{family: rooms, size: 60, seeds: [3]}]
+planners:
+  - {planner: exact, budget_ms: [null, 0.3]}
+"""
+    spec = load_spec(spec_file(tmp_path, text))
+    assert [(e.planner, e.config.get("budget_ms")) for e in spec.episodes()] == [
+        ("oracle", None), ("exact", None), ("exact", 0.3)]
+    rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())
+    lengths = {(r["planner"], r["config"].get("budget_ms")): r["length"] for r in rows}
+    assert lengths[("exact", None)] == lengths[("oracle", None)]
+    assert all(r["reached"] and r["collisions"] == 0 for r in rows)
+    with pytest.raises(ValueError, match="'nodes' is not one of its fields.*budget_ms"):
+        load_spec(spec_file(tmp_path, "worlds: [{scenario: static}]\nplanners: [{planner: exact, nodes: 9}]",
+                            "bad.yaml"))
