@@ -128,8 +128,7 @@ def planner_for(scenario: tdp.Scenario, options: dict):
 
 def run(scenario: tdp.Scenario, options: dict, oracle_length: float) -> dict:
     """One planner setting on one world: outcome and per-tick times (ms)."""
-    config = tdp.NavigatorConfig(**{k: v for k, v in options.items() if k != "planner"}) \
-        if options["planner"] == "dstar-lite" else tdp.NavigatorConfig(**options)
+    config = tdp.NavigatorConfig() if options["planner"] == "dstar-lite" else tdp.NavigatorConfig(**options)
     record = run_planner(scenario, planner_for(scenario, options), config, scenario.tick_limit)
     results = record["results"]
     return {"reached": bool(record["reached"]), "collisions": record["collisions"], "ticks": record["ticks"],

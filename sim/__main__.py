@@ -25,10 +25,9 @@ def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, 
     from .episode import run_episode
     from .render import save_trace_figure
 
-    scenario = world_from(args)
-    print(f"running {scenario.name} in PyBullet ({_config(args, planner).label()})", flush=True)
-    metrics = run_episode(scenario, _config(args, planner), gui=getattr(args, "gui", False), progress=True,
-                          frames=frames)
+    scenario, config = world_from(args), _config(args, planner)
+    print(f"running {scenario.name} in PyBullet ({config.label()})", flush=True)
+    metrics = run_episode(scenario, config, gui=getattr(args, "gui", False), progress=True, frames=frames)
     metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
     metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
     return metrics

@@ -297,8 +297,21 @@ def _stamp(stamps: ti.template(), queue: ti.template(), g, a, b, tick):
     elsewhere) the tile joins round ``tick``'s list unless it is on it already (stamped for ``tick`` before)."""
     if ti.static(_given(queue)):
         if stamps[g, a, b] < tick:
-            _enqueue(queue, tick, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
+            _enqueue(queue, tick, _tile_index(stamps, g, a, b))
     stamps[g, a, b] = tick
+
+
+@ti.func
+def _tile_index(stamps: ti.template(), g, a, b):
+    """The flat index of tile (g, a, b), as work lists hold tiles."""
+    return (g * stamps.shape[1] + a) * stamps.shape[2] + b
+
+
+@ti.func
+def _tile_of(stamps: ti.template(), index):
+    """(g, a, b) of the tile with flat index ``index`` (``_tile_index``'s inverse)."""
+    per_group = stamps.shape[1] * stamps.shape[2]
+    return index // per_group, (index % per_group) // stamps.shape[2], index % stamps.shape[2]
 
 
 @ti.func
@@ -319,7 +332,7 @@ def _spent(header: ti.template()):
 @ti.func
 def _list_active(stamps: ti.template(), queue: ti.template(), tick):
     """Make round ``tick``'s work list the tiles stamped for it (one pass over every tile, on the calling thread:
-    appending is not atomic) and empty the next round's; returns their number."""
+    appending is not atomic) and empty the next round's."""
     queue[0, queue.shape[1] - 1] = 0
     queue[1, queue.shape[1] - 1] = 0
     ti.loop_config(serialize=True)
@@ -327,16 +340,13 @@ def _list_active(stamps: ti.template(), queue: ti.template(), tick):
         for a in range(stamps.shape[1]):
             for b in range(stamps.shape[2]):
                 if stamps[g, a, b] >= tick:
-                    _enqueue(queue, tick, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
-    return queue[tick % 2, queue.shape[1] - 1]
+                    _enqueue(queue, tick, _tile_index(stamps, g, a, b))
 
 
 @ti.func
 def _listed_tile(stamps: ti.template(), queue: ti.template(), tick, k):
     """(g, a, b) of entry k of round ``tick``'s work list."""
-    tile = queue[tick % 2, k]
-    per_group = stamps.shape[1] * stamps.shape[2]
-    return tile // per_group, (tile % per_group) // stamps.shape[2], tile % stamps.shape[2]
+    return _tile_of(stamps, queue[tick % 2, k])
 
 
 @ti.func
@@ -435,8 +445,8 @@ def _sweep(header: ti.template(), rows, cols, tick):
 
 def _tile_rules(cell: dict) -> dict:
     """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
-    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``keys``, ``header`` (CHANGED,
-    SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL)."""
+    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``keys``, ``queue``, ``header``
+    (its fields: CHANGED ... TILE_ALLOWANCE)."""
     updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
     blocked = cell["blocked"]
     component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
@@ -562,9 +572,8 @@ def _tile_rules(cell: dict) -> dict:
             for k in range(total if 4 * listed > total else listed):
                 g, ta, tb = 0, 0, 0
                 if 4 * listed > total:
-                    g = k // (tiles_a * tiles_b)
-                    ta = _oriented((k // tiles_b) % tiles_a, tiles_a, sweep, 1)
-                    tb = _oriented(k % tiles_b, tiles_b, sweep, 2)
+                    g, a, b = _tile_of(stamps, k)
+                    ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
                 else:
                     g, ta, tb = _listed_tile(stamps, queue, tick, k)
                 pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep, bound,
@@ -705,15 +714,15 @@ class _Kernels:
             """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, focus row,
             focus col, tiles)): up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the
             round left when they are spent wait for the next round, in the next launch) until settled, until more
-            than ``limit`` tiles are active, or - with
-            a focus (padded layer coordinates; row -1: none), once lowering - until no pending tile can change the
-            focus's value or successors: every active tile keyed, and the lowest priority at least the focus's value
-            (a pending cell can only fall to key + 1 or more, and a way from the focus through it is at least its
-            distance longer). Each round works through a list of its active tiles (``queue``, built as the round
-            before stamps them), so a small repair on a large map does not pass over every tile each round. A
-            raise wave that ends hands its tiles to lowering in the same launch (``key_for_lowering``, the tiles
-            active since round ``since``). result = (rounds done, still lifting, settled, stopped at the focus,
-            tiles settled, stopped by ``tiles``, the index of the focus's successor move: -1 for none)."""
+            than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1: none), once
+            lowering - until no pending tile can change the focus's value or successors: every active tile keyed,
+            and the lowest priority at least the focus's value (a pending cell can only fall to key + 1 or more, and
+            a way from the focus through it is at least its distance longer). Each round works through a list of
+            its active tiles (``queue``, built as the round before stamps them), so a small repair on a large map
+            does not pass over every tile each round. A raise wave that ends hands its tiles to lowering in the same
+            launch (``key_for_lowering``, the tiles active since round ``since``). result = (rounds done, still
+            lifting, settled, stopped at the focus, tiles settled, stopped by ``tiles``, the index of the focus's
+            successor move: -1 for none)."""
             tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
             header[FOCUS_ROW], header[FOCUS_COL] = run[5], run[6]
             header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[7]
@@ -740,7 +749,7 @@ class _Kernels:
                         queue[0, queue.shape[1] - 1], queue[1, queue.shape[1] - 1] = 0, 0
                         for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
                             if key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b):
-                                _enqueue(queue, tick + done, (g * stamps.shape[1] + a) * stamps.shape[2] + b)
+                                _enqueue(queue, tick + done, _tile_index(stamps, g, a, b))
                         lifting = 0
                     else:
                         settled = 1
@@ -996,16 +1005,15 @@ class _Layers:
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
-                           origins=self.origins,
-                           cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
+                           origins=self.origins, cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
         self.woken = self.tick
         self.raised = self.raised or bool((penalties > 0).any())
         self._idle_sample = self.focus_move = None
 
     def reset(self) -> None:
-        """Both buffers back to the initial state of eqs. 5 and 10; only the tiles within the stencil's reach of the
-        source are active (every other cell and its inputs hold the cap: it cannot change before a change reaches
-        it)."""
+        """The values back to the initial state of eqs. 5 and 10 (the other buffer follows lazily, :meth:`iterate`);
+        only the tiles within the stencil's reach of the source are active (every other cell and its inputs hold the
+        cap: it cannot change before a change reaches it)."""
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
         self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
@@ -1085,10 +1093,9 @@ class _Layers:
         as from the initial state, bit for bit. Lowering starts from the tiles active at the start or reached by the
         raise wave that can fall, in order of their keys (``key_for_lowering``). A small layer's converge is one
         launch (``settle_serially``: raise wave, hand-over, lowering). Settling works in place in the values' buffer;
-        the other is made equal before the next busy iteration, if any (:meth:`iterate`), not here: a planner that
-        only converges never pays for it. With no obstacle painted and no source
-        moved since the last reset or raise wave, no value can be below its relaxation, and the raise wave is
-        skipped.
+        the other is made equal before the next iteration, if any (:meth:`iterate`), not here: a planner that only
+        converges never pays for it. With no obstacle painted and no source moved since the last reset or raise wave,
+        no value can be below its relaxation, and the raise wave is skipped.
 
         With ``focus`` (padded layer coordinates), lowering takes the tiles in order of key plus distance from the
         focus and stops once no pending tile can change the focus's value or successor chain (``settle_serially``):
