@@ -25,8 +25,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | k iterations of an idle kind | none: a kept ``sample`` (``_Layers.iterate``) | nothing to relax |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds of raise wave, then lowering | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
-| converge: hand the raise wave's tiles to lowering | ``settle_serially`` or ``prepare_lowering`` | when it ends |
+| converge: rounds lifting and lowering tiles in key order | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
 | converge: equal buffers | none: ``copy_from`` before the next busy iteration, if any | lazily |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
@@ -82,6 +81,10 @@ _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 #: until a neighbour's change wakes it with a real key. A tile woken before its turn in a round keeps this, and
 #: waits to the end instead of being due at once (which kept a focused repair from stopping).
 _SETTLED = 1e38
+#: A tile's two keys (the last axis of ``keys``): lowering's, the bound below which none of its cells can fall (inf:
+#: unknown, due at once; _SETTLED: nothing to lower), and lifting's, a bound that every cell of it below its
+#: relaxation holds more than (inf: none is). A tile with a finite lifting key is lifted before it is lowered.
+_LOWER, _LIFT = 0, 1
 #: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
 #: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
 #: none): the cell whose value and successor chain a focused repair settles first and stops at; and the tiles a
@@ -350,10 +353,11 @@ def _listed_tile(stamps: ti.template(), queue: ti.template(), tick, k):
 
 
 @ti.func
-def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, ta, tb, u, v, tick, key):
+def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, ta, tb, u, v, tick, kind, key):
     """Stamp ``tick`` on tile (ta, tb) and the neighbours that its cell (u, v) reaches (``_stamp``); with ``keys``
-    (None when iterating: only settling orders tiles) lower theirs to ``key``, the smallest new value among the
-    cell's lanes: the earliest any of them may change."""
+    (None when iterating: only settling orders tiles) lower their key of ``kind`` (_LOWER or _LIFT) to ``key``: for
+    lowering the smallest new value among the cell's lanes (the earliest any of them may change), for lifting the
+    smallest old value of the lanes it lifted (the cells that depended on them held more)."""
     for da in ti.static(range(-1, 2)):
         for db in ti.static(range(-1, 2)):
             near_a = da == 0 or (da < 0 and u < PAD) or (da > 0 and u >= TILE - PAD)
@@ -362,7 +366,7 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(
             if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
                 _stamp(stamps, queue, g, a, b, tick)
                 if ti.static(_given(keys)):
-                    ti.atomic_min(keys[g, a, b], key)
+                    ti.atomic_min(keys[g, a, b, kind], key)
 
 
 @ti.func
@@ -380,37 +384,39 @@ def _focus_distance(header: ti.template(), a, b):
 
 @ti.func
 def _priority(keys: ti.template(), header: ti.template(), g, a, b):
-    """The order in which tile (g, a, b) is settled: its key (no cell of it can fall below key + 1) plus its
-    distance from the focus, as D* Lite's keys (an unfocused converge orders by key alone)."""
-    return keys[g, a, b] + _focus_distance(header, a, b)
+    """The order in which tile (g, a, b) is settled: the lower of its keys (no cell of it can fall below its
+    lowering key + 1, and every cell of it below its relaxation holds more than its lifting key) plus its distance
+    from the focus, as D* Lite's keys (an unfocused converge orders by key alone)."""
+    return ti.min(keys[g, a, b, _LOWER], keys[g, a, b, _LIFT]) + _focus_distance(header, a, b)
 
 
 @ti.func
-def _settling_bound(stamps: ti.template(), keys: ti.template(), header: ti.template(), tick, band):
-    """The largest priority a tile may have to be settled in round ``tick``: the lowest finite priority among the
-    active tiles plus ``band`` (inf when none is finite), as delta-stepping's buckets."""
-    lowest = ti.math.inf
-    for g in range(stamps.shape[0]):
-        for a in range(stamps.shape[1]):
-            for b in range(stamps.shape[2]):
-                if stamps[g, a, b] >= tick:
-                    ti.atomic_min(lowest, _priority(keys, header, g, a, b))
-    return lowest + band
+def _unkeyed(keys: ti.template(), g, a, b):
+    """Whether tile (g, a, b)'s lowering key is unknown (inf): its cells may fall to anything, so it is due at once."""
+    return keys[g, a, b, _LOWER] == ti.math.inf
+
+
+@ti.func
+def _lifting_priority(keys: ti.template(), header: ti.template(), g, a, b):
+    """Tile (g, a, b)'s lifting key plus its distance from the focus (inf: nothing to lift)."""
+    return keys[g, a, b, _LIFT] + _focus_distance(header, a, b)
 
 
 @ti.func
 def _round_scan(stamps: ti.template(), keys: ti.template(), header: ti.template(), queue: ti.template(), tick):
     """On the calling thread, over round ``tick``'s work list (the tiles active for it): (their number, the lowest
-    finite priority among them, how many have no key yet: due at once)."""
+    finite priority among those with a lowering key, how many have none yet: due at once, the lowest lifting
+    priority)."""
     count = queue[tick % 2, queue.shape[1] - 1]
-    lowest, unkeyed = ti.math.inf, 0
+    lowest, unkeyed, lifting = ti.math.inf, 0, ti.math.inf
     for k in range(count):
         g, a, b = _listed_tile(stamps, queue, tick, k)
-        if keys[g, a, b] < ti.math.inf:
-            lowest = ti.min(lowest, _priority(keys, header, g, a, b))
-        else:
+        lifting = ti.min(lifting, _lifting_priority(keys, header, g, a, b))
+        if _unkeyed(keys, g, a, b):
             unkeyed += 1
-    return ti.Vector([ti.f32(count), lowest, ti.f32(unkeyed)])
+        else:
+            lowest = ti.min(lowest, _priority(keys, header, g, a, b))
+    return ti.Vector([ti.f32(count), lowest, ti.f32(unkeyed), lifting])
 
 
 @ti.func
@@ -470,7 +476,7 @@ def _tile_rules(cell: dict) -> dict:
                     new = updated(src, pen, header, cap, g, r + PAD, c + PAD)
                     if differs(new, src[g, r + PAD, c + PAD]):
                         changed += 1
-                        _wake_around(stamps, None, None, g, ta, tb, u, v, tick + 1, 0.0)
+                        _wake_around(stamps, None, None, g, ta, tb, u, v, tick + 1, _LOWER, 0.0)
                     dst[g, r + PAD, c + PAD] = new
             if changed:
                 ti.atomic_add(header[CHANGED], changed)
@@ -491,38 +497,69 @@ def _tile_rules(cell: dict) -> dict:
                 relax_tile(src, dst, pen, stamps, header, cap, g, ta, tb, tick)
 
     @ti.func
+    def lowering_key(values: ti.template(), header: ti.template(), cap, g, ta, tb):
+        """The lowering key of tile (g, ta, tb) once it is lifted: 0 if it holds the source (a node freed in the same
+        edits as an obstacle elsewhere holds the cap, and so may all around it), else the smallest value below the
+        cap among its cells and those within the stencil's reach (no cell of the tile can fall below it + 1 until one
+        of them falls, which wakes the tile again), inf when every one holds the cap: then each of its cells is at
+        its relaxation and nothing is left to lower until a change reaches it."""
+        key = ti.math.inf
+        top, left = ta * TILE, tb * TILE  # padded coordinates of the reach around the tile start here
+        bottom = ti.min(top + TILE + 2 * PAD, values.shape[1])
+        right = ti.min(left + TILE + 2 * PAD, values.shape[2])
+        if top + PAD <= header[SOURCE_ROW] < top + PAD + TILE and left + PAD <= header[SOURCE_COL] < left + PAD + TILE:
+            key = 0.0
+        for i, j in ti.ndrange((top, bottom), (left, right)):
+            value = lowest(values[g, i, j])
+            if value < cap:
+                key = ti.min(key, value)
+        return key
+
+    @ti.func
     def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                    header: ti.template(), queue: ti.template(), cap, g, ta, tb, tick, sweep, bound, lifting):
-        """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its key at
-        most ``bound``, or inf: due at once); an active tile not yet due is deferred to the next round. A due tile
-        sweeps its cells until they stop changing (in cache), each pass in the next of the four diagonal directions
-        starting from the round's, ``sweep`` (``_oriented``), and wakes the neighbouring tiles that its changed
-        border cells reach (``_wake_around``). Returns 1 if the tile changed or was deferred. Tiles stamped for the
-        next round join its work list (``queue``, serial settling only; None in a parallel round).
+                    header: ti.template(), queue: ti.template(), cap, g, ta, tb, tick, sweep, bound, lift_round):
+        """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its
+        priority at most ``bound``, or its lowering key unknown: due at once); an active tile not yet due is deferred
+        to the next round. A due tile sweeps its cells until they stop changing (in cache), each pass in the next of
+        the four diagonal directions starting from the round's, ``sweep`` (``_oriented``), and wakes the
+        neighbouring tiles that its changed border cells reach (``_wake_around``). Returns 1 if the tile changed or
+        waits. Tiles stamped for the next round join its work list (``queue``, serial settling only; None in a
+        parallel round). Once a serial launch's tile allowance is spent (``_spent``), every active tile left in the
+        round is deferred, keys and all.
 
-        Lowering (``lifting`` 0): a cell takes its relaxation. Every value read is the length of some path to the
-        source and a cell's relaxation never raises it (the caller guarantees that no value is below its
-        relaxation), so races between threads are benign and the tiles settle to the unique fixed point of eqs. 5
-        and 10; the order (keys, directions) only decides how fast. Once a serial launch's tile allowance is spent
-        (``_spent``), every active tile left in the round is deferred, keys and all.
+        A tile with a lifting key is lifted (the raise wave of a repair): a lane whose relaxation is above its value
+        (it lost the move it was the minimum of, and holds too little) jumps to the cap, waking the neighbours with
+        its old value as their lifting key; a cell already at the cap has nothing left to lift. If anything rose,
+        the tile is then due for lowering, keyed by ``lowering_key``, in a later round. Values only rise, so races
+        between threads are benign.
 
-        Lifting (``lifting`` 1), the raise wave of a repair: a lane whose relaxation is above its value (it lost the
-        move it was the minimum of) jumps to the cap (the tiles the wave reaches are lowered next:
-        ``key_for_lowering``); a cell already at the cap has nothing left to lift and is skipped. Values only rise,
-        so races are benign here too; once no tile lifts, no value is below its relaxation.
+        Any other tile is lowered: a cell takes its relaxation, waking the neighbours with its new value as their
+        lowering key. No cell of a lowered tile is below its relaxation (such cells lie in tiles with a lifting key:
+        the edit or the lift that put them there gave it), so its relaxation never raises it; races are benign and
+        the tiles settle to the unique fixed point of eqs. 5 and 10 (every finite value's chain of minima falls
+        strictly, so it is the length of a real path). The order (keys, directions) only decides how fast.
         """
         pending = 0
         if stamps[g, ta, tb] >= tick:
             spent = 0
             if ti.static(_given(queue)):
                 spent = _spent(header)
-            if spent or (keys[g, ta, tb] < ti.math.inf and _priority(keys, header, g, ta, tb) > bound):
+            due = 0
+            if lift_round:
+                due = _lifting_priority(keys, header, g, ta, tb) < bound
+            else:
+                due = _unkeyed(keys, g, ta, tb) or _priority(keys, header, g, ta, tb) <= bound
+            if spent or not due:
                 _stamp(stamps, queue, g, ta, tb, tick + 1)
                 pending = 1
             else:
                 rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
-                passes, changed_here = 0, 1
-                keys[g, ta, tb] = _SETTLED  # wakes from here on lower it; earlier ones are taken in now
+                lifting = keys[g, ta, tb, _LIFT] < ti.math.inf
+                passes, changed_here, rose = 0, 1, 0
+                if lifting:  # wakes from here on key it again; earlier ones are taken in now
+                    keys[g, ta, tb, _LIFT] = ti.math.inf
+                else:
+                    keys[g, ta, tb, _LOWER] = _SETTLED
                 if ti.static(_given(queue)):
                     header[SETTLED_TILES] += 1
                 while changed_here and passes < 4 * TILE:
@@ -539,26 +576,41 @@ def _tile_rules(cell: dict) -> dict:
                             if due:
                                 new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
                                 if lifting:
-                                    new = ti.select(new > old, broadcast(cap), old)
-                                if differs(new, old):
+                                    rising = new > old
+                                    new = ti.select(rising, broadcast(cap), old)
+                                    old = ti.select(rising, old, broadcast(cap))  # the lifted lanes' old values
+                                if differs(new, values[g, r + PAD, c + PAD]):
                                     values[g, r + PAD, c + PAD] = new
                                     changed_here = 1
                                     if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                        _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
-                                                     lowest(new))
+                                        if lifting:
+                                            _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1, _LIFT,
+                                                         lowest(old))
+                                        else:
+                                            _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1, _LOWER,
+                                                         lowest(new))
+                    rose = ti.max(rose, changed_here)
                     passes += 1
                 if passes > 1:
                     pending = 1
-                if changed_here:  # not settled within its passes: due at once
-                    keys[g, ta, tb] = ti.math.inf
+                if changed_here:  # not settled within its passes: due at once (lifting, then lowering, if lifting)
+                    keys[g, ta, tb, _LOWER] = ti.math.inf
+                    if lifting:
+                        ti.atomic_min(keys[g, ta, tb, _LIFT], -1.0)
                     _stamp(stamps, queue, g, ta, tb, tick + 1)
+                elif lifting:  # lowered in a later round, when the keys say it is due
+                    if rose:
+                        ti.atomic_min(keys[g, ta, tb, _LOWER], lowering_key(values, header, cap, g, ta, tb))
+                    if keys[g, ta, tb, _LOWER] != _SETTLED:
+                        _stamp(stamps, queue, g, ta, tb, tick + 1)
+                        pending = 1
         return pending
 
     @ti.func
     def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
-                   header: ti.template(), queue: ti.template(), cap, tick, lifting, bound):
-        """One round of ``settle_tile`` over the tiles due (priority at most ``bound``; every active tile when
-        ``lifting``). With a ``queue`` (None: a parallel loop over every tile, at a kernel's top level) the round
+                   header: ti.template(), queue: ti.template(), cap, tick, bound, lift_round):
+        """One round of ``settle_tile`` over the tiles due: in a lifting round (``lift_round``) those with a lifting
+        priority below ``bound``, else those with a priority at most ``bound``. With a ``queue`` (None: a parallel loop over every tile, at a kernel's top level) the round
         runs on the calling thread over its work list, or, when that holds over a quarter of the tiles, over every
         tile in the round's diagonal direction (``_oriented``, as fast sweeping); it builds the next round's list
         as it goes; once the launch's tile allowance is spent (``_spent``) the rest of the round is carried over to
@@ -577,33 +629,14 @@ def _tile_rules(cell: dict) -> dict:
                 else:
                     g, ta, tb = _listed_tile(stamps, queue, tick, k)
                 pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep, bound,
-                                       lifting)
+                                       lift_round)
             queue[tick % 2, queue.shape[1] - 1] = 0
         else:
             for g, a, b in stamps:
                 ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
                 pending += settle_tile(values, pen, stamps, keys, header, None, cap, g, ta, tb, tick, sweep, bound,
-                                       lifting)
+                                       lift_round)
         return pending
-
-    @ti.func
-    def lowering_key(values: ti.template(), header: ti.template(), cap, g, ta, tb):
-        """The key of tile (g, ta, tb) for lowering after a raise wave: 0 if it holds the source (a node freed in the
-        same edits as an obstacle elsewhere holds the cap, and so may all around it), else the smallest value below
-        the cap among its cells and those within the stencil's reach (no cell of the tile can fall below it), inf
-        when every one holds the cap: then each of its cells is at its relaxation and the tile can stay inactive
-        until a change reaches it."""
-        key = ti.math.inf
-        top, left = ta * TILE, tb * TILE  # padded coordinates of the reach around the tile start here
-        bottom = ti.min(top + TILE + 2 * PAD, values.shape[1])
-        right = ti.min(left + TILE + 2 * PAD, values.shape[2])
-        if top + PAD <= header[SOURCE_ROW] < top + PAD + TILE and left + PAD <= header[SOURCE_COL] < left + PAD + TILE:
-            key = 0.0
-        for i, j in ti.ndrange((top, bottom), (left, right)):
-            value = lowest(values[g, i, j])
-            if value < cap:
-                key = ti.min(key, value)
-        return key
 
     @ti.func
     def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
@@ -643,7 +676,7 @@ class _Kernels:
         tile = _tile_rules(cell)
         relax_all, settle_all, sample_into = tile["relax_all"], tile["settle_all"], tile["sample_into"]
         lowering_key = tile["lowering_key"]
-        broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
+        broadcast, store, window_cell, component = cell["broadcast"], cell["store"], cell["window_cell"], cell["component"]
         store_penalty, blocked_lanes = cell["store_penalty"], cell["blocked_lanes"]
         successor_move, width, band, lowest = cell["successor_move"], cell["width"], cell["band"], cell["lowest"]
         Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
@@ -651,7 +684,7 @@ class _Kernels:
         Ints = ti.types.ndarray(dtype=ti.i32, ndim=1)  # noqa: N806
         Cells = Origins = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
         Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
-        Keys = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
+        Keys = ti.types.ndarray(dtype=ti.f32, ndim=4)  # noqa: N806
         Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
         Queue = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
         made = []
@@ -700,64 +733,61 @@ class _Kernels:
 
         @kernel
         def settle(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
-                   run: ti.types.vector(2, ti.i32)) -> ti.i32:
-            """One round of in-place settling (run = (tick, lifting)), the tiles shared out among the threads;
-            returns the number of tiles that changed or wait."""
-            bound = ti.math.inf
-            if not run[1]:
-                bound = _settling_bound(stamps, keys, header, run[0], band)
-            return settle_all(values, pen, stamps, keys, header, None, cap, run[0], run[1], bound)
+                   tick: ti.i32) -> ti.i32:
+            """One round ``tick`` of in-place settling, the tiles shared out among the threads; returns the number of
+            tiles that changed or wait."""
+            lowest, lifting = ti.math.inf, ti.math.inf  # the lowest priority and lifting priority among the active
+            for g, a, b in stamps:
+                if stamps[g, a, b] >= tick:
+                    ti.atomic_min(lowest, _priority(keys, header, g, a, b))
+                    ti.atomic_min(lifting, _lifting_priority(keys, header, g, a, b))
+            lift_round = lifting < _SETTLED  # (a reduction's inf comes back as the largest float)
+            return settle_all(values, pen, stamps, keys, header, None, cap, tick,
+                              ti.select(lift_round, ti.math.inf, lowest + band), lift_round)
 
         @kernel
         def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
-                            cap: ti.f32, run: ti.types.vector(8, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, lifting, since, focus row,
-            focus col, tiles)): up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the
-            round left when they are spent wait for the next round, in the next launch) until settled, until more
-            than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1: none), once
-            lowering - until no pending tile can change the focus's value or successors: every active tile keyed,
-            and the lowest priority at least the focus's value (a pending cell can only fall to key + 1 or more, and
-            a way from the focus through it is at least its distance longer). Each round works through a list of
-            its active tiles (``queue``, built as the round before stamps them), so a small repair on a large map
-            does not pass over every tile each round. A raise wave that ends hands its tiles to lowering in the same
-            launch (``key_for_lowering``, the tiles active since round ``since``). result = (rounds done, still
-            lifting, settled, stopped at the focus, tiles settled, stopped by ``tiles``, the index of the focus's
-            successor move: -1 for none)."""
-            tick, rounds, limit, lifting, since = run[0], run[1], run[2], run[3], run[4]
-            header[FOCUS_ROW], header[FOCUS_COL] = run[5], run[6]
-            header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[7]
+                            cap: ti.f32, run: ti.types.vector(6, ti.i32), result: Ints):
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles)):
+            up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the round left when they
+            are spent wait for the next round, in the next launch) until settled, until more than ``limit`` tiles are
+            active, or - with a focus (padded layer coordinates; row -1: none) - until no pending tile can change the
+            focus's value or successors: every active tile's lowering key known, and the lowest priority at least
+            the focus's value (a pending cell can only fall to its lowering key + 1 or more, a cell below its
+            relaxation holds more than its lifting key, and a way from the focus through either is at least its
+            distance longer: ARCHITECTURE §6.1). Each round works through a list of its active tiles (``queue``,
+            built as the round before stamps them), so a small repair on a large map does not pass over every tile
+            each round. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by ``tiles``,
+            the index of the focus's successor move: -1 for none)."""
+            tick, rounds, limit = run[0], run[1], run[2]
+            header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
+            header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[5]
             done, settled, focused, cut = 0, 0, 0, 0
             _list_active(stamps, queue, tick)
             while done < rounds and settled == 0:
                 scan = _round_scan(stamps, keys, header, queue, tick + done)
                 if scan[0] > limit:
                     break
-                if not lifting and scan[0] > 0 and run[5] >= 0 and scan[2] == 0:
-                    if scan[1] >= lowest(values[0, run[5], run[6]]):
-                        focused = 1
-                        break
-                bound = ti.math.inf
-                if not lifting:
-                    bound = scan[1] + band
-                touched = settle_all(values, pen, stamps, keys, header, queue, cap, tick + done, lifting, bound)
+                aim = ti.math.inf  # the focus's value: no pending tile with a priority at least this can change it
+                if run[3] >= 0:
+                    aim = lowest(values[0, run[3], run[4]])
+                lift_round = scan[3] < aim
+                if not lift_round and scan[0] > 0 and run[3] >= 0 and scan[2] == 0 and scan[1] >= aim:
+                    focused = 1
+                    break
+                touched = settle_all(values, pen, stamps, keys, header, queue, cap, tick + done,
+                                     ti.select(lift_round, aim, scan[1] + band), lift_round)
                 done += 1
                 if _spent(header):
                     cut = 1
                     break
                 if touched == 0:
-                    if lifting:  # hand over to lowering, listing the tiles that can fall as it goes
-                        queue[0, queue.shape[1] - 1], queue[1, queue.shape[1] - 1] = 0, 0
-                        for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
-                            if key_for_lowering(values, stamps, keys, header, cap, since, tick + done, g, a, b):
-                                _enqueue(queue, tick + done, _tile_index(stamps, g, a, b))
-                        lifting = 0
-                    else:
-                        settled = 1
-            result[0], result[1], result[2], result[3] = done, lifting, settled, focused
-            result[4], result[5], result[6] = header[SETTLED_TILES], cut, -1
-            inside = PAD <= run[5] < values.shape[1] - PAD and PAD <= run[6] < values.shape[2] - PAD
+                    settled = 1
+            result[0], result[1], result[2] = done, settled, focused
+            result[3], result[4], result[5] = header[SETTLED_TILES], cut, -1
+            inside = PAD <= run[3] < values.shape[1] - PAD and PAD <= run[4] < values.shape[2] - PAD
             if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
-                result[6] = successor_move(values, pen, header, cap, 0, 0, run[5], run[6])
+                result[5] = successor_move(values, pen, header, cap, 0, 0, run[3], run[4])
 
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
@@ -775,30 +805,6 @@ class _Kernels:
                         b = ti.min(ti.max(j - PAD + db, 0), cols - 1) // TILE
                         stamps[g, a, b] = tick
 
-        @ti.func
-        def key_for_lowering(values: ti.template(), stamps: ti.template(), keys: ti.template(),
-                             header: ti.template(), cap, since, tick, g, a, b):
-            """After a raise wave: tile (g, a, b), if active since round ``since`` (active before the wave, or
-            reached by it), is handed to lowering - active for round ``tick`` with its key (``lowering_key``) if it
-            can fall, else stamped ``tick`` - 1: inactive from now on, but still counted as touched (the wave may
-            have lifted it). Without keys every reached tile was due at once, and the first round swept the whole
-            lifted region in one direction before the buckets ordered anything (maze, a wall across the busiest
-            corridor: a repair cost more than a restart). Returns 1 if the tile is active for round ``tick``."""
-            key = ti.math.inf
-            if stamps[g, a, b] >= since:
-                key = lowering_key(values, header, cap, g, a, b)
-                stamps[g, a, b] = ti.select(key < ti.math.inf, tick, tick - 1)
-            keys[g, a, b] = key
-            return ti.select(key < ti.math.inf, 1, 0)
-
-        @kernel
-        def prepare_lowering(values: Values, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
-                             run: ti.types.vector(2, ti.i32)):
-            """``key_for_lowering`` for every tile (run = (since, tick)), shared out among the threads: after a raise
-            wave that ended in a parallel round."""
-            for g, a, b in stamps:
-                key_for_lowering(values, stamps, keys, header, cap, run[0], run[1], g, a, b)
-
         @kernel
         def gather_penalties(pen: Penalties, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
             """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
@@ -815,24 +821,43 @@ class _Kernels:
                     store_penalty(pen, g, i, j, lane, value)
 
         @ti.func
-        def stamp_near(stamps: ti.template(), keys: ti.template(), g, a, b, tick):
+        def stamp_near(stamps: ti.template(), keys: ti.template(), g, a, b, tick, kind, key):
             """Activate for iteration ``tick`` the tiles of group g that have its layer cell (a, b) within reach (a
-            layer sees a cell up to PAD outside it), with no key: an edited cell may fall below any key a pending
-            repair gave them, so they are due at once."""
+            layer sees a cell up to PAD outside it) and, with ``keys`` (None: iterating only), lower their key of
+            ``kind`` (_LOWER or _LIFT) to ``key``."""
             for da in ti.static(range(-PAD, PAD + 1, PAD)):
                 for db in ti.static(range(-PAD, PAD + 1, PAD)):
                     ta, tb = (a + da) // TILE, (b + db) // TILE
                     if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
                         stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
-                        keys[g, ta, tb] = ti.math.inf
+                        if ti.static(_given(keys)):
+                            keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
+
+        @ti.func
+        def freed_key(values: ti.template(), header: ti.template(), cap, g, a, b, lane):
+            """A bound below which no cell that layer cell (a, b), lane ``lane``, just freed opens a way to can fall
+            (less 1): the smallest value below the cap within the stencil's reach of it (a way through a freed region
+            enters it from such a cell), -1 at the source."""
+            key = ti.math.inf
+            if a + PAD == header[SOURCE_ROW] and b + PAD == header[SOURCE_COL]:
+                key = -1.0
+            for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
+                value = component(values[g, a + PAD + da, b + PAD + db], lane)
+                if value < cap:
+                    key = ti.min(key, value)
+            return key
 
         @kernel
-        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, origins: Origins,
-                  cells: Cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32, tick: ti.i32):
+        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints,
+                  origins: Origins, cells: Cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32,
+                  tick: ti.i32):
             """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
-            activate the tiles near them for iteration ``tick``; a newly occupied cell takes its obstacle value, the
-            cap, at once in both buffers."""
+            activate the tiles near them for iteration ``tick``. A newly occupied cell takes its obstacle value, the
+            cap, at once in both buffers, and keys the lifting of the cells near it that depended on it by its old
+            value (they held more); the cells freed key their lowering by ``freed_key``, the smallest over them (a way
+            through several freed cells enters from one of their neighbours)."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+            freed = ti.math.inf
             ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
             for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
                 for lane in range(width):
@@ -840,22 +865,33 @@ class _Kernels:
                     if 0 <= a < rows and 0 <= b < cols:
                         store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
                         if penalties[k] > 0:
+                            old = component(src[g, a + PAD, b + PAD], lane)
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
-                    if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, keys, g, a, b, tick)
+                            stamp_near(stamps, keys, g, a, b, tick, _LIFT, old)
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                        freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                        stamp_near(stamps, keys, g, a, b, tick, _LOWER, freed)
 
         @kernel
-        def stamp_cells(stamps: Stamps, keys: Keys, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
+        def stamp_cells(stamps: Stamps, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
             """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
-            (see ``stamp_near``; ``pen`` gives the layers' shape)."""
+            (see ``stamp_near``; ``pen`` gives the layers' shape): for iterations only (a converge after a goal move
+            starts afresh)."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
             ti.loop_config(serialize=True)  # a few cells: cheaper than waking the threads
             for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, keys, g, a, b, tick)
+                        stamp_near(stamps, None, g, a, b, tick, _LOWER, 0.0)
 
         @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
@@ -934,7 +970,7 @@ class _Layers:
         self.grid_origins = np.asarray(origins, np.int32)
         self.origins = _device(self.grid_origins)
         self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
-        self.keys = ti.ndarray(ti.f32, self.stamps.shape)
+        self.keys = ti.ndarray(ti.f32, (*self.stamps.shape, 2))  # lowering's and lifting's (_LOWER, _LIFT)
         self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
         self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0], np.int32))
@@ -945,16 +981,13 @@ class _Layers:
         self._idle_sample: tuple[bytes, np.ndarray] | None = None
         self.tick = 0  # number of the next iteration, never reset: stamps compare against it
         self.woken = 0  # the latest iteration the host stamped tiles for (activate_all, activate_cells)
-        self.raised = False  # an obstacle painted or the source moved since the last reset or raise wave
         # A converge stopped before the fixed point (at its focus, or by max_rounds) leaves its active tiles and their
-        # keys for the next converge; ``repair_since`` is the first round of a raise wave still under way (the
-        # tiles it lifted are handed to lowering when it ends), None when none is.
+        # keys for the next converge.
         self.pending = False
         self.cut_short = False  # the last converge stopped at max_rounds or max_tiles (not at its fixed point or focus)
         self.settled_tiles = 0  # tiles the last converge settled on the calling thread
         # (focus, index of its successor move) read by the last converge, until anything changes the values
         self.focus_move: tuple[tuple[int, int], int] | None = None
-        self.repair_since: int | None = None
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -980,22 +1013,21 @@ class _Layers:
         """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
         the old one must rise)."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
-        self.raised, self.focus_move = True, None
+        self.focus_move = None
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""
         self.stamps.fill(self.tick)
         self.keys.fill(math.inf)
         self.woken = self.tick
-        self.pending, self.repair_since = False, None
+        self.pending = False
 
     def deactivate_all(self) -> None:
         self.stamps.fill(-1)
 
     def activate_cells(self, cells: np.ndarray) -> None:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
-        self.kernels.stamp_cells(stamps=self.stamps, keys=self.keys, pen=self.pen, origins=self.origins, cells=cells,
-                                 tick=self.tick)
+        self.kernels.stamp_cells(stamps=self.stamps, pen=self.pen, origins=self.origins, cells=cells, tick=self.tick)
         self.woken = self.tick
 
     def gather_penalties(self, grid: np.ndarray) -> None:
@@ -1005,9 +1037,9 @@ class _Layers:
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
-                           origins=self.origins, cells=cells, penalties=penalties, cap=self.cap, tick=self.tick)
+                           header=self.header, origins=self.origins, cells=cells, penalties=penalties, cap=self.cap,
+                           tick=self.tick)
         self.woken = self.tick
-        self.raised = self.raised or bool((penalties > 0).any())
         self._idle_sample = self.focus_move = None
 
     def reset(self) -> None:
@@ -1023,8 +1055,7 @@ class _Layers:
         self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                           tick=self.tick)
         self.woken = self.tick
-        self.raised = False
-        self.pending, self.repair_since = False, None
+        self.pending = False
         self._idle_sample = self.focus_move = None
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
@@ -1044,9 +1075,13 @@ class _Layers:
 
     def iterate(self, k: int, cells: np.ndarray, out: np.ndarray) -> None:
         """k synchronous iterations over the active tiles, the layers sampled at ``cells`` into out[step] after
-        each; header[CHANGED] then holds the cells the last iteration changed. An idle layer kind (:meth:`idle`)
-        launches no iteration: every step reads what it holds, sampled once and kept while it stays idle at the same
-        ``cells`` (a launch costs 0.1-0.2 ms, most of an idle tick on nav2's warehouse map)."""
+        each; header[CHANGED] then holds the cells the last iteration changed. A converge that left work pending
+        is finished first (it may have left cells below the fixed point, which iterations lift only a step at a
+        time). An idle layer kind (:meth:`idle`) launches no iteration: every step reads what it holds, sampled once
+        and kept while it stays idle at the same ``cells`` (a launch costs 0.1-0.2 ms, most of an idle tick on nav2's
+        warehouse map)."""
+        if self.pending:  # iterations start from a fixed point: a cell below its relaxation would rise slowly
+            self.converge(None)
         self.focus_move = None
         if not self.mirrored:  # settling and resets write the values' buffer only
             self.dst.copy_from(self.src)
@@ -1060,8 +1095,6 @@ class _Layers:
             self._count_iterations(k)
             return
         self._idle_sample = None
-        if self.pending:  # a converge's keys do not survive Jacobi iterations: every tile due, as after a reset
-            self.activate_all()
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
@@ -1083,31 +1116,29 @@ class _Layers:
 
     def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
         """Repair: from the current values to the fixed point, in time that grows with the region the edits since
-        the last converge affect. Returns the rounds done (lifting and lowering), at most ``max_rounds``.
+        the last converge affect. Returns the rounds done, at most ``max_rounds``.
 
         Cells outside the active tiles are at their relaxation (an invariant of iterating, settling and editing:
-        only a change wakes a tile). First the raise wave: in the active tiles and those it wakes, every lane below
-        its relaxation - it depended on a cell that became an obstacle, or on the old source - jumps to the cap,
-        until none is. Then no value is below its relaxation, so every value is at least the new fixed point's (a
-        chain of moves each at most its value reaches the source), and lowering settles to it: the same fixed point
-        as from the initial state, bit for bit. Lowering starts from the tiles active at the start or reached by the
-        raise wave that can fall, in order of their keys (``key_for_lowering``). A small layer's converge is one
-        launch (``settle_serially``: raise wave, hand-over, lowering). Settling works in place in the values' buffer;
-        the other is made equal before the next iteration, if any (:meth:`iterate`), not here: a planner that only
-        converges never pays for it. With no obstacle painted and no source moved since the last reset or raise wave,
-        no value can be below its relaxation, and the raise wave is skipped.
+        only a change wakes a tile). A cell below its relaxation - it depended on a cell that became an obstacle, or
+        on one lifted since - lies in a tile with a lifting key (``paint`` and the lifts give it): settling lifts
+        such a tile first, its lanes below their relaxation jumping to the cap (the raise wave, as D* Lite's
+        underconsistent states), and lowers it afterwards; every other active tile is lowered. Tiles go in the
+        order of their keys, as delta-stepping's buckets, so the raise and lowering waves interleave as D* Lite's
+        queue orders them. The fixed point of eqs. 5 and 10 is unique, so a converge that runs to the end reaches
+        the same one as from the initial state, bit for bit. A small layer's converge is one launch
+        (``settle_serially``). Settling works in place in the values' buffer; the other is made equal before the
+        next iteration, if any (:meth:`iterate`), not here: a planner that only converges never pays for it.
 
-        With ``focus`` (padded layer coordinates), lowering takes the tiles in order of key plus distance from the
-        focus and stops once no pending tile can change the focus's value or successor chain (``settle_serially``):
-        the rest stays pending (:attr:`pending`), keys and all, for the next converge. So does a converge cut short
-        by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles settled (0: no limit; the rest of the round
-        waits for the next converge), a raise wave under way included (:attr:`repair_since`);
-        :attr:`settled_tiles` counts the tiles it settled on the calling thread."""
+        With ``focus`` (padded layer coordinates), the tiles go in order of key plus distance from the focus and
+        the converge stops once no pending tile can change the focus's value or successor chain
+        (``settle_serially``): the rest stays pending (:attr:`pending`), keys and all, lifting included, for the next
+        converge. So does a converge cut short by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles
+        settled (0: no limit; the rest of the round waits for the next converge); :attr:`settled_tiles` counts the
+        tiles it settled on the calling thread."""
         self._idle_sample = None
         limit = _NEVER if max_rounds is None else max_rounds
-        first = self.tick if self.repair_since is None else self.repair_since
-        state = {"lifting": int(self.raised), "focused": False, "cut": False, "move": None}
-        result = np.zeros(7, np.int32)
+        state = {"focused": False, "cut": False, "move": None}
+        result = np.zeros(6, np.int32)
         self.settled_tiles = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
@@ -1115,36 +1146,28 @@ class _Layers:
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
             self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
-                                         run=(self.tick, rounds, serial_limit, state["lifting"], first, *aim,
-                                              max_tiles))
+                                         run=(self.tick, rounds, serial_limit, *aim, max_tiles))
             self.tick += int(result[0])
-            self.settled_tiles += int(result[4])
-            state["lifting"], state["focused"], state["cut"] = int(result[1]), bool(result[3]), bool(result[5])
-            state["move"] = int(result[6])
-            return int(result[0]), bool(result[2] or result[3] or result[5])
+            self.settled_tiles += int(result[3])
+            state["focused"], state["cut"], state["move"] = bool(result[2]), bool(result[4]), int(result[5])
+            return int(result[0]), bool(result[1] or result[2] or result[4])
 
         def in_parallel(done: int) -> bool:
             state["move"] = None
-            pending = self.kernels.settle(**arrays, run=(self.tick, state["lifting"]))
+            pending = self.kernels.settle(**arrays, tick=self.tick)
             self.tick += 1
-            if pending or not state["lifting"]:
-                return pending == 0
-            self.kernels.prepare_lowering(values=self.values, stamps=self.stamps, keys=self.keys, header=self.header,
-                                          cap=self.cap, run=(first, self.tick))
-            state["lifting"] = 0
-            return False
+            return pending == 0
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
-        self.raised, self.cut_short = bool(state["lifting"]), state["cut"] or not finished
+        self.cut_short = state["cut"] or not finished
         # the focus's successor move as the last launch left it (None: unknown, a parallel round came last)
         self.focus_move = None if focus is None or self.cut_short else (focus, state["move"])
         self.mirrored = False
         if finished and not state["focused"] and not state["cut"]:
             self.deactivate_all()
-            self.pending, self.repair_since = False, None
+            self.pending = False
         else:
             self.pending, self.woken = True, self.tick  # the active tiles wait for the next converge or iteration
-            self.repair_since = first if self.raised else None
         return rounds
 
     def _serial_tiles(self) -> int:

@@ -105,7 +105,8 @@ class DistanceField:
 
     @property
     def pending(self) -> bool:
-        """Whether the last :meth:`converge` left work for later (it stopped at its focus or at ``max_rounds``)."""
+        """Whether the last :meth:`converge` left work for later (it stopped at its focus or at ``max_rounds``); the
+        next :meth:`converge` goes on with it, and :meth:`step` finishes it before iterating."""
         return self._engine.pending()
 
     def reset(self) -> None:
