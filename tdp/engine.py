@@ -524,8 +524,7 @@ def _tile_rules(cell: dict) -> dict:
         the four diagonal directions starting from the round's, ``sweep`` (``_oriented``), and wakes the
         neighbouring tiles that its changed border cells reach (``_wake_around``). Returns 1 if the tile changed or
         waits. Tiles stamped for the next round join its work list (``queue``, serial settling only; None in a
-        parallel round). Once a serial launch's tile allowance is spent (``_spent``), every active tile left in the
-        round is deferred, keys and all.
+        parallel round).
 
         A tile with a lifting key is lifted (the raise wave of a repair): a lane whose relaxation is above its value
         (it lost the move it was the minimum of, and holds too little) jumps to the cap, waking the neighbours with
@@ -541,15 +540,12 @@ def _tile_rules(cell: dict) -> dict:
         """
         pending = 0
         if stamps[g, ta, tb] >= tick:
-            spent = 0
-            if ti.static(_given(queue)):
-                spent = _spent(header)
             due = 0
             if lift_round:
                 due = _lifting_priority(keys, header, g, ta, tb) < bound
             else:
                 due = _unkeyed(keys, g, ta, tb) or _priority(keys, header, g, ta, tb) <= bound
-            if spent or not due:
+            if not due:
                 _stamp(stamps, queue, g, ta, tb, tick + 1)
                 pending = 1
             else:
@@ -610,11 +606,12 @@ def _tile_rules(cell: dict) -> dict:
     def settle_all(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
                    header: ti.template(), queue: ti.template(), cap, tick, bound, lift_round):
         """One round of ``settle_tile`` over the tiles due: in a lifting round (``lift_round``) those with a lifting
-        priority below ``bound``, else those with a priority at most ``bound``. With a ``queue`` (None: a parallel loop over every tile, at a kernel's top level) the round
-        runs on the calling thread over its work list, or, when that holds over a quarter of the tiles, over every
-        tile in the round's diagonal direction (``_oriented``, as fast sweeping); it builds the next round's list
-        as it goes; once the launch's tile allowance is spent (``_spent``) the rest of the round is carried over to
-        the next. Returns the number of tiles that changed or wait (0: settled)."""
+        priority below ``bound``, else those with a priority at most ``bound``. With a ``queue`` (None: a parallel
+        loop over every tile, at a kernel's top level) the round runs on the calling thread over its work list, or,
+        when that holds over a quarter of the tiles, over every tile in the round's diagonal direction
+        (``_oriented``, as fast sweeping); it builds the next round's list as it goes; once the launch's tile
+        allowance is spent (``_spent``) the rest of the round is carried over to the next, untouched. Returns the
+        number of tiles that changed or wait (0: settled)."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
@@ -628,8 +625,13 @@ def _tile_rules(cell: dict) -> dict:
                     ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
                 else:
                     g, ta, tb = _listed_tile(stamps, queue, tick, k)
-                pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep, bound,
-                                       lift_round)
+                if _spent(header):  # the rest of the round waits for the next, keys and all
+                    if stamps[g, ta, tb] >= tick:
+                        _stamp(stamps, queue, g, ta, tb, tick + 1)
+                        pending += 1
+                else:
+                    pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep,
+                                           bound, lift_round)
             queue[tick % 2, queue.shape[1] - 1] = 0
         else:
             for g, a, b in stamps:
@@ -747,8 +749,9 @@ class _Kernels:
 
         @kernel
         def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
-                            cap: ti.f32, run: ti.types.vector(6, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles)):
+                            cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles,
+            listed)):
             up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the round left when they
             are spent wait for the next round, in the next launch) until settled, until more than ``limit`` tiles are
             active, or - with a focus (padded layer coordinates; row -1: none) - until no pending tile can change the
@@ -756,14 +759,15 @@ class _Kernels:
             the focus's value (a pending cell can only fall to its lowering key + 1 or more, a cell below its
             relaxation holds more than its lifting key, and a way from the focus through either is at least its
             distance longer: ARCHITECTURE §6.1). Each round works through a list of its active tiles (``queue``,
-            built as the round before stamps them), so a small repair on a large map does not pass over every tile
-            each round. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by ``tiles``,
+            built as the round before stamps them, and kept between launches by ``paint``: ``listed`` 1; 0 lists the
+            active tiles first), so a small repair on a large map does not pass over every tile. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by ``tiles``,
             the index of the focus's successor move: -1 for none)."""
             tick, rounds, limit = run[0], run[1], run[2]
             header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
             header[SETTLED_TILES], header[TILE_ALLOWANCE] = 0, run[5]
             done, settled, focused, cut = 0, 0, 0, 0
-            _list_active(stamps, queue, tick)
+            if not run[6]:
+                _list_active(stamps, queue, tick)
             while done < rounds and settled == 0:
                 scan = _round_scan(stamps, keys, header, queue, tick + done)
                 if scan[0] > limit:
@@ -821,15 +825,21 @@ class _Kernels:
                     store_penalty(pen, g, i, j, lane, value)
 
         @ti.func
-        def stamp_near(stamps: ti.template(), keys: ti.template(), g, a, b, tick, kind, key):
-            """Activate for iteration ``tick`` the tiles of group g that have its layer cell (a, b) within reach (a
-            layer sees a cell up to PAD outside it) and, with ``keys`` (None: iterating only), lower their key of
-            ``kind`` (_LOWER or _LIFT) to ``key``."""
+        def stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, run, kind, key):
+            """Activate for iteration or round run[0] the tiles of group g that have its layer cell (a, b) within
+            reach (a layer sees a cell up to PAD outside it), adding them to its work list if run[1] says the lists
+            are kept (``_stamp``), and, with ``keys`` (None: iterating only), lower their key of ``kind`` (_LOWER or
+            _LIFT) to ``key``."""
+            tick = run[0]
             for da in ti.static(range(-PAD, PAD + 1, PAD)):
                 for db in ti.static(range(-PAD, PAD + 1, PAD)):
                     ta, tb = (a + da) // TILE, (b + db) // TILE
                     if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                        stamps[g, ta, tb] = ti.max(stamps[g, ta, tb], tick)
+                        if stamps[g, ta, tb] < tick:
+                            if ti.static(_given(queue)):
+                                if run[1]:
+                                    _enqueue(queue, tick, _tile_index(stamps, g, ta, tb))
+                            stamps[g, ta, tb] = tick
                         if ti.static(_given(keys)):
                             keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
 
@@ -848,11 +858,12 @@ class _Kernels:
             return key
 
         @kernel
-        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints,
+        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
                   origins: Origins, cells: Cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32,
-                  tick: ti.i32):
+                  run: ti.types.vector(2, ti.i32)):
             """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
-            activate the tiles near them for iteration ``tick``. A newly occupied cell takes its obstacle value, the
+            activate the tiles near them for the next iteration or round (run = (its number, whether the work lists
+            are kept: ``stamp_near``)). A newly occupied cell takes its obstacle value, the
             cap, at once in both buffers, and keys the lifting of the cells near it that depended on it by its old
             value (they held more); the cells freed key their lowering by ``freed_key``, the smallest over them (a way
             through several freed cells enters from one of their neighbours)."""
@@ -868,7 +879,7 @@ class _Kernels:
                             old = component(src[g, a + PAD, b + PAD], lane)
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
-                            stamp_near(stamps, keys, g, a, b, tick, _LIFT, old)
+                            stamp_near(stamps, keys, queue, g, a, b, run, _LIFT, old)
             for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
@@ -878,7 +889,7 @@ class _Kernels:
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
-                        stamp_near(stamps, keys, g, a, b, tick, _LOWER, freed)
+                        stamp_near(stamps, keys, queue, g, a, b, run, _LOWER, freed)
 
         @kernel
         def stamp_cells(stamps: Stamps, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
@@ -891,7 +902,7 @@ class _Kernels:
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, None, g, a, b, tick, _LOWER, 0.0)
+                        stamp_near(stamps, None, None, g, a, b, (tick, 0), _LOWER, 0.0)
 
         @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
@@ -973,6 +984,7 @@ class _Layers:
         self.keys = ti.ndarray(ti.f32, (*self.stamps.shape, 2))  # lowering's and lifting's (_LOWER, _LIFT)
         self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
+        self.listed = False  # the work list of round ``tick`` holds the active tiles (kept by settling and painting)
         self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
@@ -1017,17 +1029,20 @@ class _Layers:
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""
+        self.listed = False
         self.stamps.fill(self.tick)
         self.keys.fill(math.inf)
         self.woken = self.tick
         self.pending = False
 
     def deactivate_all(self) -> None:
+        self.listed = False
         self.stamps.fill(-1)
 
     def activate_cells(self, cells: np.ndarray) -> None:
         """Activate the tiles near ``cells`` ((n, 2) int32 grid cells) for the next iteration."""
         self.kernels.stamp_cells(stamps=self.stamps, pen=self.pen, origins=self.origins, cells=cells, tick=self.tick)
+        self.listed = False
         self.woken = self.tick
 
     def gather_penalties(self, grid: np.ndarray) -> None:
@@ -1037,8 +1052,8 @@ class _Layers:
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
-                           header=self.header, origins=self.origins, cells=cells, penalties=penalties, cap=self.cap,
-                           tick=self.tick)
+                           header=self.header, queue=self.queue, origins=self.origins, cells=cells,
+                           penalties=penalties, cap=self.cap, run=(self.tick, int(self.listed)))
         self.woken = self.tick
         self._idle_sample = self.focus_move = None
 
@@ -1049,7 +1064,7 @@ class _Layers:
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
         self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
-        self.mirrored = False
+        self.mirrored, self.listed = False, False
         self.stamps.fill(-1)
         self.keys.fill(math.inf)
         self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
@@ -1082,7 +1097,7 @@ class _Layers:
         warehouse map)."""
         if self.pending:  # iterations start from a fixed point: a cell below its relaxation would rise slowly
             self.converge(None)
-        self.focus_move = None
+        self.focus_move, self.listed = None, False  # iterations stamp tiles and number rounds without lists
         if not self.mirrored:  # settling and resets write the values' buffer only
             self.dst.copy_from(self.src)
             self.mirrored = True
@@ -1146,7 +1161,8 @@ class _Layers:
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
             self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
-                                         run=(self.tick, rounds, serial_limit, *aim, max_tiles))
+                                         run=(self.tick, rounds, serial_limit, *aim, max_tiles, int(self.listed)))
+            self.listed = True
             self.tick += int(result[0])
             self.settled_tiles += int(result[3])
             state["focused"], state["cut"], state["move"] = bool(result[2]), bool(result[4]), int(result[5])
@@ -1156,6 +1172,7 @@ class _Layers:
             state["move"] = None
             pending = self.kernels.settle(**arrays, tick=self.tick)
             self.tick += 1
+            self.listed = False
             return pending == 0
 
         rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
@@ -1208,6 +1225,7 @@ class _Layers:
         later ones keep their distance to the next iteration."""
         if self.tick < REBASE_AT:
             return
+        self.listed = False
         stamps = self.stamps.to_numpy()
         self.stamps.from_numpy(np.where(stamps >= self.tick, stamps - self.tick, -1).astype(np.int32))
         self.woken = max(self.woken - self.tick, -1)
