@@ -387,7 +387,13 @@ def _priority(keys: ti.template(), header: ti.template(), g, a, b):
     """The order in which tile (g, a, b) is settled: the lower of its keys (no cell of it can fall below its
     lowering key + 1, and every cell of it below its relaxation holds more than its lifting key) plus its distance
     from the focus, as D* Lite's keys (an unfocused converge orders by key alone)."""
-    return ti.min(keys[g, a, b, _LOWER], keys[g, a, b, _LIFT]) + _focus_distance(header, a, b)
+    return _lowest_key(keys, g, a, b) + _focus_distance(header, a, b)
+
+
+@ti.func
+def _lowest_key(keys: ti.template(), g, a, b):
+    """The lower of tile (g, a, b)'s lowering and lifting keys."""
+    return ti.min(keys[g, a, b, _LOWER], keys[g, a, b, _LIFT])
 
 
 @ti.func
@@ -411,11 +417,12 @@ def _round_scan(stamps: ti.template(), keys: ti.template(), header: ti.template(
     lowest, unkeyed, lifting = ti.math.inf, 0, ti.math.inf
     for k in range(count):
         g, a, b = _listed_tile(stamps, queue, tick, k)
-        lifting = ti.min(lifting, _lifting_priority(keys, header, g, a, b))
+        away = _focus_distance(header, a, b)
+        lifting = ti.min(lifting, keys[g, a, b, _LIFT] + away)
         if _unkeyed(keys, g, a, b):
             unkeyed += 1
         else:
-            lowest = ti.min(lowest, _priority(keys, header, g, a, b))
+            lowest = ti.min(lowest, _lowest_key(keys, g, a, b) + away)
     return ti.Vector([ti.f32(count), lowest, ti.f32(unkeyed), lifting])
 
 
@@ -1175,7 +1182,10 @@ class _Layers:
             self.listed = False
             return pending == 0
 
-        rounds, finished = self._waves(limit, self._serial_tiles(), serially, in_parallel)
+        # A focused repair stays on the calling thread (on a CPU) however many tiles wait: most of them do not move
+        # (the work that cannot reach the focus piles up), and a parallel round would settle them all.
+        serial_tiles = self._serial_tiles() if focus is None else _NEVER
+        rounds, finished = self._waves(limit, serial_tiles, serially, in_parallel)
         self.cut_short = state["cut"] or not finished
         # the focus's successor move as the last launch left it (None: unknown, a parallel round came last)
         self.focus_move = None if focus is None or self.cut_short else (focus, state["move"])
