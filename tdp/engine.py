@@ -87,9 +87,12 @@ _SETTLED = 1e38
 _LOWER, _LIFT = 0, 1
 #: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
 #: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
-#: none): the cell whose value and successor chain a focused repair settles first and stops at; and the tiles a
-#: serial settling launch has settled so far, and how many it may (0: no limit).
+#: none): the cell whose value and successor chain a focused repair settles first and stops at; the tiles a
+#: serial settling launch has settled so far, and how many it may (0: no limit); and a round that a launch's
+#: allowance cut short, for the next launch to go on with: the entry of its work list to go on from (0: none open),
+#: its bound (float32 bits) and whether it lifts.
 CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL, SETTLED_TILES, TILE_ALLOWANCE = 0, 1, 2, 3, 4, 5, 6
+ROUND_CURSOR, ROUND_BOUND, ROUND_LIFTS = 7, 8, 9
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
@@ -617,29 +620,29 @@ def _tile_rules(cell: dict) -> dict:
         loop over every tile, at a kernel's top level) the round runs on the calling thread over its work list, or,
         when that holds over a quarter of the tiles, over every tile in the round's diagonal direction
         (``_oriented``, as fast sweeping); it builds the next round's list as it goes; once the launch's tile
-        allowance is spent (``_spent``) the rest of the round is carried over to the next, untouched. Returns the
-        number of tiles that changed or wait (0: settled)."""
+        allowance is spent (``_spent``) the round stops, open (header[ROUND_CURSOR]: the entry the next launch goes
+        on from). Returns the number of tiles that changed or wait (0: settled)."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
         if ti.static(_given(queue)):
             listed = queue[tick % 2, queue.shape[1] - 1]
             total = stamps.shape[0] * tiles_a * tiles_b
-            for k in range(total if 4 * listed > total else listed):
+            first, cut = header[ROUND_CURSOR], 0
+            for k in range(first, total if 4 * listed > total else listed):
+                if _spent(header):  # the rest of the round waits for the next launch, from entry k
+                    header[ROUND_CURSOR], cut = k, 1
+                    break
                 g, ta, tb = 0, 0, 0
                 if 4 * listed > total:
                     g, a, b = _tile_of(stamps, k)
                     ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
                 else:
                     g, ta, tb = _listed_tile(stamps, queue, tick, k)
-                if _spent(header):  # the rest of the round waits for the next, keys and all
-                    if stamps[g, ta, tb] >= tick:
-                        _stamp(stamps, queue, g, ta, tb, tick + 1)
-                        pending += 1
-                else:
-                    pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep,
-                                           bound, lift_round)
-            queue[tick % 2, queue.shape[1] - 1] = 0
+                pending += settle_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep, bound,
+                                       lift_round)
+            if not cut:
+                queue[tick % 2, queue.shape[1] - 1], header[ROUND_CURSOR] = 0, 0
         else:
             for g, a, b in stamps:
                 ta, tb = _oriented(a, tiles_a, sweep, 1), _oriented(b, tiles_b, sweep, 2)
@@ -759,8 +762,8 @@ class _Kernels:
                             cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
             """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles,
             listed)):
-            up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; the tiles of the round left when they
-            are spent wait for the next round, in the next launch) until settled, until more than ``limit`` tiles are
+            up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; a round whose tiles are spent stays
+            open, and the next launch goes on with it; with a limit, the open round and one new round at most) until settled, until more than ``limit`` tiles are
             active, or - with a focus (padded layer coordinates; row -1: none) - until no pending tile can change the
             focus's value or successors: every active tile's lowering key known, and the lowest priority at least
             the focus's value (a pending cell can only fall to its lowering key + 1 or more, a cell below its
@@ -775,24 +778,33 @@ class _Kernels:
             done, settled, focused, cut = 0, 0, 0, 0
             if not run[6]:
                 _list_active(stamps, queue, tick)
-            while done < rounds and settled == 0:
-                scan = _round_scan(stamps, keys, header, queue, tick + done)
-                if scan[0] > limit:
-                    break
-                aim = ti.math.inf  # the focus's value: no pending tile with a priority at least this can change it
-                if run[3] >= 0:
-                    aim = lowest(values[0, run[3], run[4]])
-                lift_round = scan[3] < aim
-                if not lift_round and scan[0] > 0 and run[3] >= 0 and scan[2] == 0 and scan[1] >= aim:
-                    focused = 1
-                    break
-                touched = settle_all(values, pen, stamps, keys, header, queue, cap, tick + done,
-                                     ti.select(lift_round, aim, scan[1] + band), lift_round)
-                done += 1
-                if _spent(header):
+                header[ROUND_CURSOR] = 0
+            started = 0  # rounds begun in this launch: with an allowance one at most, since its scan passes over
+            while done < rounds and settled == 0:  # every active tile and a slice must not pay for many
+                if _spent(header) or (run[5] > 0 and started > 0 and header[ROUND_CURSOR] == 0):
                     cut = 1
                     break
-                if touched == 0:
+                if header[ROUND_CURSOR] == 0:  # a new round: its bound, or the focus reached
+                    started += 1
+                    scan = _round_scan(stamps, keys, header, queue, tick + done)
+                    if scan[0] > limit:
+                        break
+                    aim = ti.math.inf  # the focus's value: no pending tile with a priority at least this changes it
+                    if run[3] >= 0:
+                        aim = lowest(values[0, run[3], run[4]])
+                    lift_round = scan[3] < aim
+                    if not lift_round and scan[0] > 0 and run[3] >= 0 and scan[2] == 0 and scan[1] >= aim:
+                        focused = 1
+                        break
+                    header[ROUND_BOUND] = ti.bit_cast(ti.select(lift_round, aim, scan[1] + band), ti.i32)
+                    header[ROUND_LIFTS] = ti.select(lift_round, 1, 0)
+                settle_all(values, pen, stamps, keys, header, queue, cap, tick + done,
+                           ti.bit_cast(header[ROUND_BOUND], ti.f32), header[ROUND_LIFTS])
+                if header[ROUND_CURSOR] > 0:
+                    cut = 1
+                    break
+                done += 1
+                if queue[(tick + done) % 2, queue.shape[1] - 1] == 0:  # no tile active for the next round
                     settled = 1
             result[0], result[1], result[2] = done, settled, focused
             result[3], result[4], result[5] = header[SETTLED_TILES], cut, -1
@@ -992,7 +1004,8 @@ class _Layers:
         self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
         self.listed = False  # the work list of round ``tick`` holds the active tiles (kept by settling and painting)
-        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0], np.int32))
+        self.round_open = False  # the last launch's allowance cut round ``tick`` short: it goes on at the next
+        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0, 0, 0, 0], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
         # (cells as bytes, this kind's values there) sampled while idle; dropped by everything that changes values:
@@ -1060,7 +1073,8 @@ class _Layers:
         """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
-                           penalties=penalties, cap=self.cap, run=(self.tick, int(self.listed)))
+                           penalties=penalties, cap=self.cap,
+                           run=(self.tick + int(self.round_open), int(self.listed)))  # an open round is under way
         self.woken = self.tick
         self._idle_sample = self.focus_move = None
 
@@ -1173,13 +1187,14 @@ class _Layers:
             self.tick += int(result[0])
             self.settled_tiles += int(result[3])
             state["focused"], state["cut"], state["move"] = bool(result[2]), bool(result[4]), int(result[5])
+            self.round_open = state["cut"]
             return int(result[0]), bool(result[1] or result[2] or result[4])
 
         def in_parallel(done: int) -> bool:
             state["move"] = None
             pending = self.kernels.settle(**arrays, tick=self.tick)
             self.tick += 1
-            self.listed = False
+            self.listed = self.round_open = False
             return pending == 0
 
         # A focused repair stays on the calling thread (on a CPU) however many tiles wait: most of them do not move

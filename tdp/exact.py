@@ -24,6 +24,9 @@ from .stencil import escape_move, moves
 #: With a budget, a slice of a tick's repair settles at least this many 8 x 8 tiles (3-20 µs each on the 2-core VM),
 #: and as many more as the rate measured so far says fit in what is left after a slice's fixed cost.
 FIRST_TILES = 32
+#: A slice settles at most this many times the tiles of the slice before it: tiles cost 0.2-20 µs, and a rate
+#: measured on cheap ones (a raise wave) must not open the way to thousands of dear ones in one slice.
+GROWTH = 4
 
 
 class ExactPlanner:
@@ -68,6 +71,7 @@ class ExactPlanner:
         self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
         self._moves = moves(config.neighbourhood, config.corner_cutting)
         self._tile_s = 0.0  # seconds per tile settled, beyond the fixed cost, in the last slice that settled any
+        self._last_tiles = FIRST_TILES  # the tiles the last slice settled
         self._slice_s = 0.0  # the fixed cost of a slice (a converge launch with nothing to settle), from setup()
         # The cells whose route to the goal the last repair left exact (the robot's cell and its next step), or
         # none since an edit or a goal move: a tick that finds the robot on one of them has nothing to repair.
@@ -141,15 +145,17 @@ class ExactPlanner:
                 return True
             if self.engine.settled_tiles():
                 self._tile_s = max(now - sliced - self._slice_s, 0.0) / self.engine.settled_tiles()
+                self._last_tiles = self.engine.settled_tiles()
             if deadline - now <= self._slice_s + FIRST_TILES * self._tile_s:
                 return False
 
     def _tiles_fitting(self, left_s: float) -> int:
         """How many tiles a slice may settle in ``left_s`` seconds at the rate measured so far (FIRST_TILES at
-        least, and while nothing is measured)."""
+        least, and while nothing is measured; GROWTH times the last slice's at most)."""
         if self._tile_s <= 0:
             return FIRST_TILES
-        return max(FIRST_TILES, int((left_s - self._slice_s) / self._tile_s))
+        fitting = int((left_s - self._slice_s) / self._tile_s)
+        return max(FIRST_TILES, min(fitting, GROWTH * max(self._last_tiles, FIRST_TILES)))
 
     def _distances(self, cells: list) -> np.ndarray:
         """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""
