@@ -31,7 +31,7 @@ import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import median_time, print_table, quick_parser, save_results
+from benchmarks.common import freeze_heap, median_time, print_table, quick_parser, save_results
 from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, largest_free_region
 from benchmarks.reference_graph import grid_graph
 from tdp.contract import timing_summary
@@ -126,6 +126,7 @@ def main() -> None:
     scenarios = worlds(args.quick, args.seeds)
     for _, options in PLANNERS:  # compile every kernel of both kinds (excluded from every timing)
         navigator(scenarios[0], tdp.NavigatorConfig(**options)).setup()
+    freeze_heap()
     rows = []
     for scenario in scenarios:
         reference = recompute_ms(scenario)
