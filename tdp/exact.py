@@ -40,10 +40,10 @@ class ExactPlanner:
     Unbudgeted, every tick's move is the successor of a full converge on that tick's map (mode ``exact``). With
     ``budget_ms`` a tick repairs for at most about that long (its work in 8 x 8 tiles, plus a launch: RESULTS.md §0);
     when the budget runs out before the robot's route is settled, the robot follows the layer as far as the
-    repair got (mode ``behind``): once the raise wave is through, every finite value is the length of a real
-    route on the current map and the successors only make legal moves down it, so the robot heads along a real
-    route, perhaps not the shortest, and never into an obstacle; values still in the raise wave may lead towards a
-    passage that has closed. The repair catches up at a later tick and the route is exact again.
+    repair got (mode ``behind``): the successors only make legal moves down the values, never into an obstacle;
+    where the repair has been, every finite value is the length of a real route on the current map, so the robot
+    heads along a real route, perhaps not the shortest; values it has not reached (lifts still waiting) may lead
+    towards a passage that has closed. The repair catches up at a later tick and the route is exact again.
 
     Raises:
         ValueError: ``grid`` is not a GridMap, ``config`` not a NavigatorConfig, start or goal not a free cell.
