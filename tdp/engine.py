@@ -25,7 +25,7 @@ kernel runs when (``_Layers._waves`` alone decides serial or parallel):
 | k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
 | k iterations of an idle kind | none: a kept ``sample`` (``_Layers.iterate``) | nothing to relax |
 | one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds lifting and lowering tiles in key order | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
+| converge: rounds lifting, then lowering tiles | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
 | converge: equal buffers | none: ``copy_from`` before the next busy iteration, if any | lazily |
 | initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
 | map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
@@ -694,7 +694,8 @@ class _Kernels:
         tile = _tile_rules(cell)
         relax_all, settle_all, sample_into = tile["relax_all"], tile["settle_all"], tile["sample_into"]
         lowering_key = tile["lowering_key"]
-        broadcast, store, window_cell, component = cell["broadcast"], cell["store"], cell["window_cell"], cell["component"]
+        broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
+        component = cell["component"]
         store_penalty, blocked_lanes = cell["store_penalty"], cell["blocked_lanes"]
         successor_move, width, band, lowest = cell["successor_move"], cell["width"], cell["band"], cell["lowest"]
         Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
@@ -767,17 +768,17 @@ class _Kernels:
         def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
                             cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
             """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles,
-            listed)):
-            up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; a round whose tiles are spent stays
-            open, and the next launch goes on with it; scans count against the limit: ``_spent``) until settled, until more than ``limit`` tiles are
-            active, or - with a focus (padded layer coordinates; row -1: none) - until no pending tile can change the
-            focus's value or successors: every active tile's lowering key known, and the lowest priority at least
-            the focus's value (a pending cell can only fall to its lowering key + 1 or more, a cell below its
-            relaxation holds more than its lifting key, and a way from the focus through either is at least its
-            distance longer: ARCHITECTURE §6.1). Each round works through a list of its active tiles (``queue``,
-            built as the round before stamps them, and kept between launches by ``paint``: ``listed`` 1; 0 lists the
-            active tiles first), so a small repair on a large map does not pass over every tile. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by ``tiles``,
-            the index of the focus's successor move: -1 for none)."""
+            listed)): up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; a round whose tiles are
+            spent stays open, and the next launch goes on with it; scans count against the limit: ``_spent``) until
+            settled, until more than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1:
+            none) - until no pending tile can change the focus's value or successors: every active tile's lowering
+            key known, and the lowest priority at least the focus's value (a pending cell can only fall to its
+            lowering key + 1 or more, a cell below its relaxation holds more than its lifting key, and a way from the
+            focus through either is at least its distance longer: ARCHITECTURE §6.1). Each round works through a
+            list of its active tiles (``queue``, built as the round before stamps them, and kept between launches by
+            ``paint``: ``listed`` 1; 0 lists the active tiles first), so a small repair on a large map does not pass
+            over every tile. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by
+            ``tiles``, the index of the focus's successor move: -1 for none)."""
             tick, rounds, limit = run[0], run[1], run[2]
             header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
             header[SETTLED_TILES], header[TILE_ALLOWANCE], header[SCANNED] = 0, run[5], 0
