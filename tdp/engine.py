@@ -587,20 +587,18 @@ def _tile_rules(cell: dict) -> dict:
                                 due = ti.select(lowest(old) < cap, 1, 0)
                             if due:
                                 new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
+                                lifted = old  # the lifted lanes' old values (the cap elsewhere), when lifting
                                 if lifting:
                                     rising = new > old
                                     new = ti.select(rising, broadcast(cap), old)
-                                    old = ti.select(rising, old, broadcast(cap))  # the lifted lanes' old values
-                                if differs(new, values[g, r + PAD, c + PAD]):
+                                    lifted = ti.select(rising, old, broadcast(cap))
+                                if differs(new, old):
                                     values[g, r + PAD, c + PAD] = new
                                     changed_here = 1
                                     if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                        if lifting:
-                                            _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1, _LIFT,
-                                                         lowest(old))
-                                        else:
-                                            _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1, _LOWER,
-                                                         lowest(new))
+                                        _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
+                                                     ti.select(lifting, _LIFT, _LOWER),
+                                                     ti.select(lifting, lowest(lifted), lowest(new)))
                     rose = ti.max(rose, changed_here)
                     passes += 1
                 if passes > 1:
@@ -634,9 +632,9 @@ def _tile_rules(cell: dict) -> dict:
         if ti.static(_given(queue)):
             listed = queue[tick % 2, queue.shape[1] - 1]
             total = stamps.shape[0] * tiles_a * tiles_b
-            first, cut = header[ROUND_CURSOR], 0
+            first, cut, limited = header[ROUND_CURSOR], 0, header[TILE_ALLOWANCE] > 0
             for k in range(first, total if 4 * listed > total else listed):
-                if k > first and _spent(header):  # the rest of the round waits for the next launch, from entry k
+                if limited and k > first and _spent(header):  # the rest waits for the next launch, from entry k
                     header[ROUND_CURSOR], cut = k, 1
                     break
                 g, ta, tb = 0, 0, 0
