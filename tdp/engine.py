@@ -302,13 +302,15 @@ def _given(argument) -> bool:
 
 
 @ti.func
-def _stamp(stamps: ti.template(), queue: ti.template(), g, a, b, tick):
-    """Stamp tile (g, a, b) for round or iteration ``tick``; with a ``queue`` (serial settling's work lists, None
-    elsewhere) the tile joins round ``tick``'s list unless it is on it already (stamped for ``tick`` before)."""
-    if ti.static(_given(queue)):
-        if stamps[g, a, b] < tick:
-            _enqueue(queue, tick, _tile_index(stamps, g, a, b))
-    stamps[g, a, b] = tick
+def _stamp(stamps: ti.template(), queue: ti.template(), g, a, b, tick, listing):
+    """Stamp tile (g, a, b) for round or iteration ``tick`` unless it is stamped for it already; with a ``queue``
+    (the work lists; None when iterating) and ``listing`` (the lists are kept: always while settling, only while
+    they are current when painting) a tile newly stamped joins round ``tick``'s list."""
+    if stamps[g, a, b] < tick:
+        if ti.static(_given(queue)):
+            if listing:
+                _enqueue(queue, tick, _tile_index(stamps, g, a, b))
+        stamps[g, a, b] = tick
 
 
 @ti.func
@@ -373,7 +375,7 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(
             near_b = db == 0 or (db < 0 and v < PAD) or (db > 0 and v >= TILE - PAD)
             a, b = ta + da, tb + db
             if near_a and near_b and 0 <= a < stamps.shape[1] and 0 <= b < stamps.shape[2]:
-                _stamp(stamps, queue, g, a, b, tick)
+                _stamp(stamps, queue, g, a, b, tick, 1)
                 if ti.static(_given(keys)):
                     ti.atomic_min(keys[g, a, b, kind], key)
 
@@ -562,12 +564,12 @@ def _tile_rules(cell: dict) -> dict:
             else:
                 due = _unkeyed(keys, g, ta, tb) or _priority(keys, header, g, ta, tb) <= bound
             if not due:
-                _stamp(stamps, queue, g, ta, tb, tick + 1)
+                _stamp(stamps, queue, g, ta, tb, tick + 1, 1)
                 pending = 1
             else:
                 rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
                 lifting = keys[g, ta, tb, _LIFT] < ti.math.inf
-                passes, changed_here, rose = 0, 1, 0
+                passes, changed_here = 0, 1
                 if lifting:  # wakes from here on key it again; earlier ones are taken in now
                     keys[g, ta, tb, _LIFT] = ti.math.inf
                 else:
@@ -599,7 +601,6 @@ def _tile_rules(cell: dict) -> dict:
                                         _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
                                                      ti.select(lifting, _LIFT, _LOWER),
                                                      ti.select(lifting, lowest(lifted), lowest(new)))
-                    rose = ti.max(rose, changed_here)
                     passes += 1
                 if passes > 1:
                     pending = 1
@@ -607,12 +608,12 @@ def _tile_rules(cell: dict) -> dict:
                     keys[g, ta, tb, _LOWER] = ti.math.inf
                     if lifting:
                         ti.atomic_min(keys[g, ta, tb, _LIFT], -1.0)
-                    _stamp(stamps, queue, g, ta, tb, tick + 1)
+                    _stamp(stamps, queue, g, ta, tb, tick + 1, 1)
                 elif lifting:  # lowered in a later round, when the keys say it is due
-                    if rose:
+                    if passes > 1:  # something rose (a pass that changes nothing ends the sweeps)
                         ti.atomic_min(keys[g, ta, tb, _LOWER], lowering_key(values, header, cap, g, ta, tb))
                     if keys[g, ta, tb, _LOWER] != _SETTLED:
-                        _stamp(stamps, queue, g, ta, tb, tick + 1)
+                        _stamp(stamps, queue, g, ta, tb, tick + 1, 1)
                         pending = 1
         return pending
 
@@ -853,16 +854,11 @@ class _Kernels:
             reach (a layer sees a cell up to PAD outside it), adding them to its work list if run[1] says the lists
             are kept (``_stamp``), and, with ``keys`` (None: iterating only), lower their key of ``kind`` (_LOWER or
             _LIFT) to ``key``."""
-            tick = run[0]
             for da in ti.static(range(-PAD, PAD + 1, PAD)):
                 for db in ti.static(range(-PAD, PAD + 1, PAD)):
                     ta, tb = (a + da) // TILE, (b + db) // TILE
                     if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                        if stamps[g, ta, tb] < tick:
-                            if ti.static(_given(queue)):
-                                if run[1]:
-                                    _enqueue(queue, tick, _tile_index(stamps, g, ta, tb))
-                            stamps[g, ta, tb] = tick
+                        _stamp(stamps, queue, g, ta, tb, run[0], run[1])
                         if ti.static(_given(keys)):
                             keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
 
