@@ -839,14 +839,16 @@ class _Kernels:
             blocked and in the padding): inf outside the grid and in the layer's own padding."""
             rows, cols = grid.shape[0] - 2 * PAD, grid.shape[1] - 2 * PAD
             side_rows, side_cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-            for g, i, j in pen:
+            for g, i in ti.ndrange(pen.shape[0], pen.shape[1]):  # by rows: threads take 32 loop items at a time
                 for lane in range(width):
                     r = origins[g * width + lane, 0] + i - PAD
-                    c = origins[g * width + lane, 1] + j - PAD
-                    value = ti.math.inf
-                    if PAD <= i < side_rows + PAD and PAD <= j < side_cols + PAD and 0 <= r < rows and 0 <= c < cols:
-                        value = grid[r + PAD, c + PAD]
-                    store_penalty(pen, g, i, j, lane, value)
+                    left = origins[g * width + lane, 1] - PAD
+                    inside = PAD <= i < side_rows + PAD and 0 <= r < rows
+                    for j in range(pen.shape[2]):
+                        value = ti.math.inf
+                        if inside and PAD <= j < side_cols + PAD and 0 <= left + j < cols:
+                            value = grid[r + PAD, left + j + PAD]
+                        store_penalty(pen, g, i, j, lane, value)
 
         @ti.func
         def stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, run, kind, key):
