@@ -82,13 +82,16 @@ class ExactPlanner:
         return self.engine.goal
 
     def setup(self) -> int:
-        """Compile the engine's kernels and converge the goal layer fully; returns the rounds it took."""
+        """Compile the engine's kernels and converge the goal layer focused on the start, as D* Lite's first search
+        (A*'s order: a tile's key plus its distance from the start); returns the rounds it took. It settles what can
+        be on the start's route or beat it and leaves the rest of the map pending (:meth:`Engine.pending`) until a
+        tick's repair needs it; ``planner.engine.converge()`` completes the layer when a whole field is wanted."""
         self.engine.warm_up()
-        rounds = self.engine.converge()
+        rounds = self.engine.converge(focus=self._focus())
         idle = []
         for _ in range(3):  # a converge with nothing to do: what every slice of a budgeted repair costs at least
             began = time.perf_counter()
-            self.engine.converge(max_tiles=FIRST_TILES)
+            self.engine.converge(focus=self._focus(), max_tiles=FIRST_TILES)
             idle.append(time.perf_counter() - began)
         self._slice_s = min(idle)
         return rounds
@@ -132,7 +135,7 @@ class ExactPlanner:
         or the budget is spent; returns whether the robot's route is exact. Not called when the robot stands on the
         route the last repair left exact and nothing changed since: stepping along an exact route, every pending
         tile's priority falls by at most the step, and so does the robot's value (the focus test still holds)."""
-        focus = None if self.engine.occupied[self.robot] else self.robot  # escaping reads the whole neighbourhood
+        focus = self._focus()
         if self.config.budget_ms is None:
             self.engine.converge(focus=focus)
             return True
@@ -148,6 +151,11 @@ class ExactPlanner:
                 self._last_tiles = self.engine.settled_tiles()
             if deadline - now <= self._slice_s + FIRST_TILES * self._tile_s:
                 return False
+
+    def _focus(self) -> tuple[int, int] | None:
+        """The cell a repair focuses on: the robot's, or none (a full converge) while an obstacle covers it, since
+        escaping reads the values of its whole neighbourhood."""
+        return None if self.engine.occupied[self.robot] else self.robot
 
     def _tiles_fitting(self, left_s: float) -> int:
         """How many tiles a slice may settle in ``left_s`` seconds at the rate measured so far (FIRST_TILES at
