@@ -100,6 +100,16 @@ SCANNED_PER_TILE = 64
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
+#: Priority buckets of the search from the initial state (``_search_rules``), a ring: a bucket holds the cells whose
+#: priority (value, plus the distance from the focus if any) has that floor (a power of 2). A move adds its length (1 to sqrt 5) to
+#: a value and at most as much to the distance, so a cell joins a bucket at most 5 past the one being emptied.
+SEARCH_BUCKETS = 8
+#: A focused search stops once the bucket it reaches is this many cells beyond the focus's value, so that the
+#: settling rounds that take over its frontier find nothing due: they key a tile by the cells within its reach and
+#: add the distance from the focus of its nearest cell, up to a tile-and-reach diagonal less than those cells' own
+#: (and a priority carries float rounding).
+SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
+_UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 8
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -291,8 +301,8 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
     return dict(broadcast=broadcast, component=component, differs=differs, lowest=lowest, blocked=blocked, store=store,
-                store_penalty=store_penalty, blocked_lanes=blocked_lanes, updated=updated,
-                successor_move=successor_move, window_cell=window_cell, width=width,
+                store_penalty=store_penalty, blocked_lanes=blocked_lanes, updated=updated, crossing=crossing,
+                moves=moves, successor_move=successor_move, window_cell=window_cell, width=width,
                 first_column=0 if lanes == 0 else 1, band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
 
 
@@ -378,6 +388,21 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(
                 _stamp(stamps, queue, g, a, b, tick, 1)
                 if ti.static(_given(keys)):
                     ti.atomic_min(keys[g, a, b, kind], key)
+
+
+@ti.func
+def _stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, run, kind, key):
+    """Activate for iteration or round run[0] the tiles of group g that have its layer cell (a, b) within
+    reach (a layer sees a cell up to PAD outside it), adding them to its work list if run[1] says the lists
+    are kept (``_stamp``), and, with ``keys`` (None: iterating only), lower their key of ``kind`` (_LOWER or
+    _LIFT) to ``key``."""
+    for da in ti.static(range(-PAD, PAD + 1, PAD)):
+        for db in ti.static(range(-PAD, PAD + 1, PAD)):
+            ta, tb = (a + da) // TILE, (b + db) // TILE
+            if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
+                _stamp(stamps, queue, g, ta, tb, run[0], run[1])
+                if ti.static(_given(keys)):
+                    keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
 
 
 @ti.func
@@ -675,6 +700,113 @@ def _tile_rules(cell: dict) -> dict:
     return dict(relax_all=relax_all, settle_all=settle_all, sample_into=sample_into, lowering_key=lowering_key)
 
 
+def _search_rules(cell: dict) -> dict:
+    """The search from the initial state of a scalar layer: Dial's label-setting algorithm (Dijkstra's with buckets
+    one cell wide), cell by cell on the calling thread, with A*'s order and stop when focused. Its fixed point is the
+    one eqs. 5 and 10 define, bit for bit: a cell takes the smallest value + move length over its free neighbours,
+    in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
+    emptied depend on none of its cells (unfocused: each cell is taken once, with its final value).
+
+    ``links`` (padded cells + SEARCH_BUCKETS, 2) int32: column 0 each listed cell's next cell in its bucket, and in
+    the last SEARCH_BUCKETS rows each bucket's first; column 1 the previous cell, ``_UNLISTED`` for a cell in no
+    bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
+    blocked, crossing = cell["blocked"], cell["crossing"]
+    moves = cell["moves"]
+
+    @ti.func
+    def unlink(links: ti.template(), heads, c):
+        """Take cell ``c`` out of its bucket."""
+        before, after = links[1, c], links[0, c]
+        if before >= 0:
+            links[0, before] = after
+        else:
+            links[0, heads - 2 - before] = after
+        if after >= 0:
+            links[1, after] = before
+        links[1, c] = _UNLISTED
+
+    @ti.func
+    def link(links: ti.template(), heads, c, slot):
+        """Put cell ``c`` (in no bucket) first in bucket ``slot``."""
+        first = links[0, heads + slot]
+        links[0, c], links[1, c] = first, -2 - slot
+        if first >= 0:
+            links[1, first] = c
+        links[0, heads + slot] = c
+
+    @ti.func
+    def priority(value, i, j, focus_row, focus_col):
+        """``value`` plus the Euclidean distance of padded cell (i, j) from the focus (none: row -1): a lower bound
+        on a route from the focus through the cell (A*'s f; every move costs its Euclidean length)."""
+        away = 0.0
+        if focus_row >= 0:
+            away = ti.sqrt(ti.f32((i - focus_row) ** 2 + (j - focus_col) ** 2))
+        return value + away
+
+    @ti.func
+    def search(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), cap,
+               focus_row, focus_col):
+        """Lower ``values`` (the initial state: the cap everywhere, the source aside) bucket by bucket from the
+        source; with a focus (padded coordinates; row -1: none) stop once the bucket reached is SEARCH_MARGIN past
+        the focus's value. Returns (buckets emptied, cells still listed: the frontier a focused search leaves)."""
+        width = values.shape[2]
+        heads = links.shape[1] - SEARCH_BUCKETS
+        for slot in range(SEARCH_BUCKETS):
+            links[0, heads + slot] = _UNLISTED
+        listed, bucket, emptied = 0, 0, 0
+        i, j = header[SOURCE_ROW], header[SOURCE_COL]
+        if not blocked(pen[0, i, j]):
+            values[0, i, j] = 0.0
+            bucket = ti.i32(priority(0.0, i, j, focus_row, focus_col))
+            link(links, heads, i * width + j, bucket & (SEARCH_BUCKETS - 1))
+            listed = 1
+        while listed > 0 and not (focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
+            slot = bucket & (SEARCH_BUCKETS - 1)
+            while links[0, heads + slot] >= 0:
+                c = links[0, heads + slot]
+                unlink(links, heads, c)
+                listed -= 1
+                i, j = c // width, c % width
+                value = values[0, i, j]
+                for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
+                    u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
+                    cand = crossing(value + ti.f32(m.cost), pen, 0, u, v, m.crossed) + pen[0, u, v]
+                    if cand < values[0, u, v]:
+                        values[0, u, v] = cand
+                        there = u * width + v
+                        if links[1, there] == _UNLISTED:
+                            listed += 1
+                        else:
+                            unlink(links, heads, there)
+                        due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
+                        link(links, heads, there, due & (SEARCH_BUCKETS - 1))
+            bucket += 1
+            emptied += 1
+        return ti.Vector([emptied, listed])
+
+    @ti.func
+    def hand_over(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick):
+        """After a search: every tile settled (lowering key _SETTLED, no lifting key) but those within reach of a
+        cell still listed (the frontier a focused search leaves), which are active for round ``tick`` with that
+        cell's value as lowering key (``_stamp_near``): the invariants of settling (``settle_tile``) hold, and the
+        rounds of a later converge go on from the frontier. Empties the buckets."""
+        for g in range(stamps.shape[0]):
+            for a in range(stamps.shape[1]):
+                for b in range(stamps.shape[2]):
+                    stamps[g, a, b] = -1
+                    keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
+        width = values.shape[2]
+        heads = links.shape[1] - SEARCH_BUCKETS
+        for slot in range(SEARCH_BUCKETS):
+            while links[0, heads + slot] >= 0:
+                c = links[0, heads + slot]
+                unlink(links, heads, c)
+                i, j = c // width, c % width
+                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, (tick, 0), _LOWER, values[0, i, j])
+
+    return dict(search=search, hand_over=hand_over)
+
+
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
     stencil's ``neighbourhood`` and corner rule - closed over as constants. The decorator that makes each kernel also
@@ -817,6 +949,22 @@ class _Kernels:
             if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
                 result[5] = successor_move(values, pen, header, cap, 0, 0, run[3], run[4])
 
+        if lanes == 0:
+            searching = _search_rules(cell)
+            bucket_search, hand_over = searching["search"], searching["hand_over"]
+
+            @kernel
+            def search(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, links: Queue,
+                       cap: ti.f32, run: ti.types.vector(4, ti.i32), result: Ints):
+                """converge() from the initial state, on the calling thread (``_search_rules``; run = (focus row,
+                focus col, tick, 1), 0 last: nothing), the tiles then handed over to settling for round ``tick``.
+                result = (buckets emptied, frontier cells left)."""
+                ti.loop_config(serialize=True)
+                for _ in range(run[3]):
+                    found = bucket_search(values, pen, header, links, cap, run[0], run[1])
+                    hand_over(values, stamps, keys, links, run[2])
+                    result[0], result[1] = found[0], found[1]
+
         @kernel
         def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
             """After both buffers are filled with the cap and every tile deactivated: 0 at a free source (eqs. 5 and
@@ -851,20 +999,6 @@ class _Kernels:
                         store_penalty(pen, g, i, j, lane, value)
 
         @ti.func
-        def stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, run, kind, key):
-            """Activate for iteration or round run[0] the tiles of group g that have its layer cell (a, b) within
-            reach (a layer sees a cell up to PAD outside it), adding them to its work list if run[1] says the lists
-            are kept (``_stamp``), and, with ``keys`` (None: iterating only), lower their key of ``kind`` (_LOWER or
-            _LIFT) to ``key``."""
-            for da in ti.static(range(-PAD, PAD + 1, PAD)):
-                for db in ti.static(range(-PAD, PAD + 1, PAD)):
-                    ta, tb = (a + da) // TILE, (b + db) // TILE
-                    if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                        _stamp(stamps, queue, g, ta, tb, run[0], run[1])
-                        if ti.static(_given(keys)):
-                            keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
-
-        @ti.func
         def freed_key(values: ti.template(), header: ti.template(), cap, g, a, b, lane):
             """A bound below which no cell that layer cell (a, b), lane ``lane``, just freed opens a way to can fall
             (less 1): the smallest value below the cap within the stencil's reach of it (a way through a freed region
@@ -884,7 +1018,7 @@ class _Kernels:
                   run: ti.types.vector(2, ti.i32)):
             """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
             activate the tiles near them for the next iteration or round (run = (its number, whether the work lists
-            are kept: ``stamp_near``)). A newly occupied cell takes its obstacle value, the
+            are kept: ``_stamp_near``)). A newly occupied cell takes its obstacle value, the
             cap, at once in both buffers, and keys the lifting of the cells near it that depended on it by its old
             value (they held more); the cells freed key their lowering by ``freed_key``, the smallest over them (a way
             through several freed cells enters from one of their neighbours)."""
@@ -900,7 +1034,7 @@ class _Kernels:
                             old = component(src[g, a + PAD, b + PAD], lane)
                             store(src, g, a + PAD, b + PAD, lane, cap)
                             store(dst, g, a + PAD, b + PAD, lane, cap)
-                            stamp_near(stamps, keys, queue, g, a, b, run, _LIFT, old)
+                            _stamp_near(stamps, keys, queue, g, a, b, run, _LIFT, old)
             for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
@@ -910,12 +1044,12 @@ class _Kernels:
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
-                        stamp_near(stamps, keys, queue, g, a, b, run, _LOWER, freed)
+                        _stamp_near(stamps, keys, queue, g, a, b, run, _LOWER, freed)
 
         @kernel
         def stamp_cells(stamps: Stamps, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
             """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
-            (see ``stamp_near``; ``pen`` gives the layers' shape): for iterations only (a converge after a goal move
+            (see ``_stamp_near``; ``pen`` gives the layers' shape): for iterations only (a converge after a goal move
             starts afresh)."""
             rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
             ti.loop_config(serialize=True)  # a few cells: cheaper than waking the threads
@@ -923,7 +1057,7 @@ class _Kernels:
                 for lane in range(width):
                     a, b = window_cell(origins, cells, k, g, lane)
                     if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        stamp_near(stamps, None, None, g, a, b, (tick, 0), _LOWER, 0.0)
+                        _stamp_near(stamps, None, None, g, a, b, (tick, 0), _LOWER, 0.0)
 
         @kernel
         def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
@@ -1022,6 +1156,9 @@ class _Layers:
         self.settled_tiles = 0  # tiles the last converge settled on the calling thread
         # (focus, index of its successor move) read by the last converge, until anything changes the values
         self.focus_move: tuple[tuple[int, int], int] | None = None
+        # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
+        self.fresh = False
+        self._links = None  # the search's buckets (``_search_rules``), made at the first search
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -1094,6 +1231,7 @@ class _Layers:
                           tick=self.tick)
         self.woken = self.tick
         self.pending = False
+        self.fresh = True
         self._idle_sample = self.focus_move = None
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
@@ -1120,7 +1258,7 @@ class _Layers:
         warehouse map)."""
         if self.pending:  # iterations start from a fixed point: a cell below its relaxation would rise slowly
             self.converge(None)
-        self.focus_move, self.listed = None, False  # iterations stamp tiles and number rounds without lists
+        self.focus_move, self.listed, self.fresh = None, False, False  # iterations stamp tiles without lists
         if not self.mirrored:  # settling and resets write the values' buffer only
             self.dst.copy_from(self.src)
             self.mirrored = True
@@ -1172,8 +1310,13 @@ class _Layers:
         (``settle_serially``): the rest stays pending (:attr:`pending`), keys and all, lifting included, for the next
         converge. So does a converge cut short by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles
         settled (0: no limit; the rest of the round waits for the next converge); :attr:`settled_tiles` counts the
-        tiles it settled on the calling thread."""
-        self._idle_sample = None
+        tiles it settled on the calling thread.
+
+        From the initial state (after :meth:`reset`), a scalar layer's converge with no limits is a search instead
+        (:meth:`_search`)."""
+        if self.fresh and not self.lanes and max_rounds is None and not max_tiles:
+            return self._search(focus)
+        self._idle_sample, self.fresh = None, False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         result = np.zeros(6, np.int32)
@@ -1213,6 +1356,23 @@ class _Layers:
         else:
             self.pending, self.woken = True, self.tick  # the active tiles wait for the next converge or iteration
         return rounds
+
+    def _search(self, focus: tuple[int, int] | None) -> int:
+        """converge() from the initial state: the label-setting search of ``_search_rules`` (Dial's buckets, A*'s
+        order and stop with a focus) takes each cell about once however the map winds, where rounds of tiles settle
+        a tile again each time the front comes back to it (a maze's corridors). A focused search hands its frontier
+        over to the settling rounds of later converges (:attr:`pending`). Returns the buckets emptied."""
+        if self._links is None:
+            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + SEARCH_BUCKETS))
+            self._links.fill(_UNLISTED)
+        result = np.zeros(2, np.int32)
+        self.kernels.search(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
+                            links=self._links, cap=self.cap, run=(*(focus or _NO_FOCUS), self.tick, 1), result=result)
+        self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
+        self.settled_tiles = 0
+        self.pending, self.woken = bool(result[1]), self.tick
+        self._idle_sample = self.focus_move = None
+        return int(result[0])
 
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""
