@@ -14,6 +14,7 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
 * ``crossing``: one or two boxes keep crossing the robot's route near its middle, back and forth.
 
 ``make_world(family, size, seed)`` is deterministic: the same arguments give the same :class:`~tdp.world.Scenario`.
+``maze(size, corridor, seed)`` draws a perfect maze's occupancy, a static map for benchmarks and tests.
 """
 from __future__ import annotations
 
@@ -53,6 +54,54 @@ def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
                 scenario.occupancy(scenario.max_ticks), scenario.start, scenario.target(scenario.max_ticks)):
             return scenario
     raise RuntimeError(f"no valid {family} world of size {size} from seed {seed} in 100 draws")
+
+
+def maze(size: int, corridor: int = 1, seed: int = 0) -> np.ndarray:
+    """A perfect maze (one way between any two places) as a bool (size, size) occupancy map, True = wall: a
+    recursive backtracker over a lattice of rooms ``corridor`` cells wide, walls 1 cell thick, the map's border a
+    wall. The worst case for a converge in rounds of tiles: a tile holds pieces of corridors at very different
+    distances from a goal (a 1-cell maze of side 512 has routes of 26,000+ cells).
+
+    Raises:
+        ValueError: ``size`` less than ``corridor + 2``, or ``corridor`` less than 1.
+
+    Examples:
+        >>> occupied = maze(9, corridor=1, seed=0)
+        >>> occupied.shape, bool(occupied[0].all()), bool(occupied[1, 1])
+        ((9, 9), True, False)
+    """
+    if not isinstance(corridor, (int, np.integer)) or corridor < 1:
+        raise ValueError(f"corridor must be an int of at least 1 cell, got {corridor!r}")
+    if not isinstance(size, (int, np.integer)) or size < corridor + 2:
+        raise ValueError(f"size must be an int of at least corridor + 2 = {corridor + 2} cells, got {size!r}")
+    pitch = corridor + 1
+    rooms = (size - 1) // pitch
+    occupied = np.ones((size, size), bool)
+    rng = np.random.default_rng(seed)
+    seen = np.zeros((rooms, rooms), bool)
+
+    def open_room(r: int, c: int) -> None:
+        occupied[1 + r * pitch:1 + r * pitch + corridor, 1 + c * pitch:1 + c * pitch + corridor] = False
+
+    def open_between(r: int, c: int, nr: int, nc: int) -> None:
+        top, left = 1 + min(r, nr) * pitch, 1 + min(c, nc) * pitch
+        occupied[top:top + corridor + (nr != r) * pitch, left:left + corridor + (nc != c) * pitch] = False
+
+    stack = [(0, 0)]
+    seen[0, 0] = True
+    open_room(0, 0)
+    while stack:
+        r, c = stack[-1]
+        options = [(r + dr, c + dc) for dr, dc in ((1, 0), (-1, 0), (0, 1), (0, -1))
+                   if 0 <= r + dr < rooms and 0 <= c + dc < rooms and not seen[r + dr, c + dc]]
+        if not options:
+            stack.pop()
+            continue
+        nr, nc = options[rng.integers(len(options))]
+        seen[nr, nc] = True
+        open_between(r, c, nr, nc)
+        stack.append((nr, nc))
+    return occupied
 
 
 class _Redraw(Exception):
