@@ -41,6 +41,7 @@ import io
 import logging
 import math
 import os
+import time
 import weakref
 
 os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout belongs to its user: no banner
@@ -109,6 +110,13 @@ SEARCH_BUCKETS = 8
 #: add the distance from the focus of its nearest cell, up to a tile-and-reach diagonal less than those cells' own
 #: (and a priority carries float rounding).
 SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
+#: A repair after edits (``_Layers._repair``) gives up for a restart from the initial state once it has taken this
+#: share of the last search's time (0.5 left 1.6-1.8x a restart on 1-cell mazes, where a box seals a pocket). Its
+#: first slice settles what fits in that time at SLOWEST_TILE_S a tile (a maze's tiles take up to 32 passes; most
+#: take 1-3 µs), each later one what the rate measured says fits in the rest, 4x the last at most.
+RESTART_SHARE = 0.25
+SLOWEST_TILE_S = 25e-6
+_FEWEST_TILES = 16  # a repair's slice settles at least this many tiles
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 8
@@ -1159,6 +1167,7 @@ class _Layers:
         # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
         self.fresh = False
         self._links = None  # the search's buckets (``_search_rules``), made at the first search
+        self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
         self.activate_all()
 
     def _array(self, shape: tuple[int, int, int]):
@@ -1291,6 +1300,15 @@ class _Layers:
                     origins=self.origins, cap=self.cap)
 
     def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
+        """From the current values to the fixed point (with ``focus``, padded layer coordinates, as far as the
+        focus needs: :meth:`_settle`); returns the rounds or buckets it took. A scalar layer's converge with no
+        limits searches from the initial state (:meth:`_search`) and repairs after edits (:meth:`_repair`); every
+        other converge settles rounds of tiles (:meth:`_settle`)."""
+        if self.lanes or max_rounds is not None or max_tiles:
+            return self._settle(max_rounds, focus, max_tiles)
+        return self._search(focus) if self.fresh else self._repair(focus)
+
+    def _settle(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
         """Repair: from the current values to the fixed point, in time that grows with the region the edits since
         the last converge affect. Returns the rounds done, at most ``max_rounds``.
 
@@ -1310,12 +1328,7 @@ class _Layers:
         (``settle_serially``): the rest stays pending (:attr:`pending`), keys and all, lifting included, for the next
         converge. So does a converge cut short by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles
         settled (0: no limit; the rest of the round waits for the next converge); :attr:`settled_tiles` counts the
-        tiles it settled on the calling thread.
-
-        From the initial state (after :meth:`reset`), a scalar layer's converge with no limits is a search instead
-        (:meth:`_search`)."""
-        if self.fresh and not self.lanes and max_rounds is None and not max_tiles:
-            return self._search(focus)
+        tiles it settled on the calling thread."""
         self._idle_sample, self.fresh = None, False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
@@ -1366,13 +1379,43 @@ class _Layers:
             self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + SEARCH_BUCKETS))
             self._links.fill(_UNLISTED)
         result = np.zeros(2, np.int32)
-        self.kernels.search(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                            links=self._links, cap=self.cap, run=(*(focus or _NO_FOCUS), self.tick, 1), result=result)
+        arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
+                      links=self._links, cap=self.cap, result=result)
+        if self.restart_s is None:  # compiled (if not yet) by a launch that does nothing, so the time is the search's
+            self.kernels.search(**arrays, run=(*_NO_FOCUS, self.tick, 0))
+        began = time.perf_counter()
+        self.kernels.search(**arrays, run=(*(focus or _NO_FOCUS), self.tick, 1))
+        self.restart_s = time.perf_counter() - began
         self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
         self.settled_tiles = 0
         self.pending, self.woken = bool(result[1]), self.tick
         self._idle_sample = self.focus_move = None
         return int(result[0])
+
+    def _repair(self, focus: tuple[int, int] | None) -> int:
+        """converge() after edits: rounds of tiles (:meth:`_settle`) in slices, given up for a restart (:meth:`reset`,
+        then :meth:`_search`) once they have taken RESTART_SHARE of the time the last search took, as a ski rental
+        buys once renting has cost a share of the price: a change that lifts most of a maze (a box sealing off a
+        pocket whose every cell must rise to the cap, which a search never visits) costs at most about (1 +
+        RESTART_SHARE) times a restart, and a small one a slice or two. The result is the fixed point either way."""
+        if self.restart_s is None:  # no search yet to tell what a restart costs
+            return self._settle(None, focus)
+        allowance_s, spent_s, rounds, settled = RESTART_SHARE * self.restart_s, 0.0, 0, 0
+        tiles = max(_FEWEST_TILES, int(min(allowance_s / SLOWEST_TILE_S, _NEVER)))
+        while True:
+            began = time.perf_counter()
+            rounds += self._settle(None, focus, tiles)
+            took_s = time.perf_counter() - began
+            spent_s += took_s
+            settled += self.settled_tiles
+            if not self.cut_short:
+                self.settled_tiles = settled
+                return rounds
+            if spent_s >= allowance_s:
+                self.reset()
+                return rounds + self._search(focus)
+            tile_s = took_s / max(self.settled_tiles, 1)  # the next slice: what fits in the rest, at most 4x this one
+            tiles = max(_FEWEST_TILES, min(4 * tiles, int(min((allowance_s - spent_s) / tile_s, _NEVER))))
 
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 import tdp
 from tdp import engine as engine_module
 from tdp.engine import Engine
+from tdp.random_worlds import maze
 
 OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "step"]
 
@@ -67,13 +68,17 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
     monkeypatch.setattr(engine_module, "SERIAL_SETTLE_TILES", 10**6 if serially else 0)
 
 
-@pytest.mark.parametrize("serially", [True, False])
+@pytest.mark.parametrize("serially, restart_share", [(True, 0.25), (False, 0.25), (True, 0.0), (True, 1e-4)])
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans())
-def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, sequence, neighbourhood, corner_cutting,
-                                                    with_nodes):
+def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, restart_share, sequence, neighbourhood,
+                                                    corner_cutting, with_nodes):
+    """... also when every repair that takes more than a slice restarts instead (share 0), and when some do, in
+    the middle of a round (a tiny share)."""
     launch_rounds(monkeypatch, serially)
+    monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
+    monkeypatch.setattr(engine_module, "_FEWEST_TILES", 1 if restart_share < 0.25 else 16)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
     occupied = rng.random((rows, cols)) < density
@@ -219,4 +224,30 @@ def test_a_closed_door_sends_the_region_behind_it_round_by_the_far_door():
     engine.set_cells(np.array([(20, c) for c in range(4, 7)]), np.ones(3, bool))
     engine.converge()
     assert np.isfinite(engine.goal_distances()[21:, :]).all()
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
+@pytest.mark.parametrize("corridor", [1, 3])
+@pytest.mark.parametrize("restart_share", [1e-6, 1e6])
+def test_a_box_sealing_off_most_of_a_maze_restarts_or_repairs_to_the_same_values(monkeypatch, corridor,
+                                                                                restart_share):
+    """On a perfect maze a box across the corridor on the route from the farthest cell seals off everything behind
+    it. Given up for a restart (a tiny share: the decision is the benchmark's to time) the sealed cells are left at
+    the cap by the reset, never visited; repaired in rounds of tiles (no restart) they rise to it; either way the
+    result is a fresh converge's."""
+    monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
+    monkeypatch.setattr(engine_module, "_FEWEST_TILES", 1)
+    occupied = maze(129, corridor, seed=corridor)
+    engine = Engine(occupied, (1, 1))
+    engine.converge()
+    far = np.unravel_index(np.argmax(np.where(np.isfinite(engine.goal_distances()), engine.goal_distances(), -1)),
+                           occupied.shape)
+    middle = engine.trace(0, tuple(int(v) for v in far), occupied.size)[-40]
+    reach = range(-corridor, corridor + 1)  # a box across the corridor, wherever the route runs in it
+    box = np.array([(middle[0] + i, middle[1] + j) for i in reach for j in reach])
+    box = box[~occupied[box[:, 0], box[:, 1]]]
+    engine.set_cells(box, np.ones(len(box), bool))
+    engine.converge()
+    assert (engine.settled_tiles() == 0) == (restart_share < 1)  # a search came last, or rounds of tiles did
+    assert np.isinf(engine.goal_distances()[far])
     assert_equal_to_a_fresh_converge(engine, {})
