@@ -71,6 +71,7 @@ def run(scenario: tdp.Scenario, options: dict, ticks: int) -> dict:
     built = time.perf_counter()
     rounds = planner.setup()
     done = time.perf_counter()
+    freeze_heap()  # after each setup, as a control loop would: the runs before left objects a collection would walk
     record = run_planner(scenario, planner, config, ticks)
     results = record["results"]
     tick = timing_summary([sum(v for k, v in r.timings.items() if k != "update") for r in results])
@@ -126,7 +127,6 @@ def main() -> None:
     scenarios = worlds(args.quick, args.seeds)
     for _, options in PLANNERS:  # compile every kernel of both kinds (excluded from every timing)
         navigator(scenarios[0], tdp.NavigatorConfig(**options)).setup()
-    freeze_heap()
     rows = []
     for scenario in scenarios:
         reference = recompute_ms(scenario)

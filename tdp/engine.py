@@ -88,22 +88,23 @@ _SETTLED = 1e38
 _LOWER, _LIFT = 0, 1
 #: A layer kind's header, an int32 array the kernels read and write: the cells the last iteration changed, the
 #: source (padded layer coordinates), the cell held at 0, and the focus of a converge (padded coordinates; row -1:
-#: none): the cell whose value and successor chain a focused repair settles first and stops at; the tiles a
-#: serial settling launch has settled so far, and how many it may (0: no limit); and a round that a launch's
-#: allowance cut short, for the next launch to go on with: the entry of its work list to go on from (0: none open),
-#: its bound (float32 bits) and whether it lifts.
-CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL, SETTLED_TILES, TILE_ALLOWANCE = 0, 1, 2, 3, 4, 5, 6
+#: none): the cell whose value and successor chain a focused repair settles first and stops at; the sweeps (passes
+#: over an 8 x 8 tile) a serial settling launch has made so far, and how many it may (0: no limit); and a round
+#: that a launch's allowance cut short, for the next launch to go on with: the entry of its work list to go on from
+#: (0: none open), its bound (float32 bits) and whether it lifts.
+CHANGED, SOURCE_ROW, SOURCE_COL, FOCUS_ROW, FOCUS_COL, SWEPT, SWEEP_ALLOWANCE = 0, 1, 2, 3, 4, 5, 6
 ROUND_CURSOR, ROUND_BOUND, ROUND_LIFTS, SCANNED = 7, 8, 9, 10
-#: Work-list entries a round's scan reads for the price of settling one tile (about 20 ns against 1-2 µs): a
-#: launch with a tile allowance counts its scans against it, so that a slice with thousands of tiles waiting does
-#: not begin round after round.
-SCANNED_PER_TILE = 64
+#: Work-list entries a round's scan reads for the price of one sweep of a tile (about 20 ns against 1-2 µs): a
+#: launch with an allowance counts its scans against it, so that a slice with thousands of tiles waiting does not
+#: begin round after round.
+SCANNED_PER_SWEEP = 64
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
 #: Priority buckets of the search from the initial state (``_search_rules``), a ring: a bucket holds the cells whose
-#: priority (value, plus the distance from the focus if any) has that floor (a power of 2). A move adds its length (1 to sqrt 5) to
-#: a value and at most as much to the distance, so a cell joins a bucket at most 5 past the one being emptied.
+#: priority (value, plus the distance from the focus if any) has that floor (a power of 2). A move adds its length
+#: (1 to sqrt 5) to a value and at most as much to the distance, so a cell joins a bucket at most 5 past the one
+#: being emptied.
 SEARCH_BUCKETS = 8
 #: A focused search stops once the bucket it reaches is this many cells beyond the focus's value, so that the
 #: settling rounds that take over its frontier find nothing due: they key a tile by the cells within its reach and
@@ -112,11 +113,11 @@ SEARCH_BUCKETS = 8
 SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: A repair after edits (``_Layers._repair``) gives up for a restart from the initial state once it has taken this
 #: share of the last search's time (0.5 left 1.6-1.8x a restart on 1-cell mazes, where a box seals a pocket). Its
-#: first slice settles what fits in that time at SLOWEST_TILE_S a tile (a maze's tiles take up to 32 passes; most
-#: take 1-3 µs), each later one what the rate measured says fits in the rest, 4x the last at most.
+#: first slice makes the sweeps that fit in that time at SLOWEST_SWEEP_S each (1.1-2.2 µs measured on the 2-core VM,
+#: mazes the dearest), each later one what the rate measured says fits in the rest, 4x the last at most.
 RESTART_SHARE = 0.25
-SLOWEST_TILE_S = 25e-6
-_FEWEST_TILES = 16  # a repair's slice settles at least this many tiles
+SLOWEST_SWEEP_S = 2.5e-6
+_FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 8
@@ -355,10 +356,10 @@ def _enqueue(queue: ti.template(), tick, tile):
 
 @ti.func
 def _spent(header: ti.template()):
-    """Whether a serial settling launch has settled all the tiles it may (header[TILE_ALLOWANCE], 0: no limit), its
-    scans counted at SCANNED_PER_TILE entries a tile."""
-    spent = header[SETTLED_TILES] + header[SCANNED] // SCANNED_PER_TILE
-    return header[TILE_ALLOWANCE] > 0 and spent >= header[TILE_ALLOWANCE]
+    """Whether a serial settling launch has made all the sweeps it may (header[SWEEP_ALLOWANCE], 0: no limit), its
+    scans counted at SCANNED_PER_SWEEP entries a sweep."""
+    spent = header[SWEPT] + header[SCANNED] // SCANNED_PER_SWEEP
+    return header[SWEEP_ALLOWANCE] > 0 and spent >= header[SWEEP_ALLOWANCE]
 
 
 @ti.func
@@ -503,7 +504,7 @@ def _sweep(header: ti.template(), rows, cols, tick):
 def _tile_rules(cell: dict) -> dict:
     """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
     A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``keys``, ``queue``, ``header``
-    (its fields: CHANGED ... TILE_ALLOWANCE)."""
+    (its fields: CHANGED ... SWEEP_ALLOWANCE)."""
     updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
     blocked = cell["blocked"]
     component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
@@ -607,8 +608,6 @@ def _tile_rules(cell: dict) -> dict:
                     keys[g, ta, tb, _LIFT] = ti.math.inf
                 else:
                     keys[g, ta, tb, _LOWER] = _SETTLED
-                if ti.static(_given(queue)):
-                    header[SETTLED_TILES] += 1
                 while changed_here and passes < 4 * TILE:
                     changed_here = 0
                     for k in range(TILE * TILE):
@@ -635,6 +634,8 @@ def _tile_rules(cell: dict) -> dict:
                                                      ti.select(lifting, _LIFT, _LOWER),
                                                      ti.select(lifting, lowest(lifted), lowest(new)))
                     passes += 1
+                if ti.static(_given(queue)):  # the unit of a launch's allowance: a tile's sweeps cost 1-32 passes
+                    header[SWEPT] += passes
                 if passes > 1:
                     pending = 1
                 if changed_here:  # not settled within its passes: due at once (lifting, then lowering, if lifting)
@@ -666,7 +667,7 @@ def _tile_rules(cell: dict) -> dict:
         if ti.static(_given(queue)):
             listed = queue[tick % 2, queue.shape[1] - 1]
             total = stamps.shape[0] * tiles_a * tiles_b
-            first, cut, limited = header[ROUND_CURSOR], 0, header[TILE_ALLOWANCE] > 0
+            first, cut, limited = header[ROUND_CURSOR], 0, header[SWEEP_ALLOWANCE] > 0
             for k in range(first, total if 4 * listed > total else listed):
                 if limited and k > first and _spent(header):  # the rest waits for the next launch, from entry k
                     header[ROUND_CURSOR], cut = k, 1
@@ -920,7 +921,7 @@ class _Kernels:
             ``tiles``, the index of the focus's successor move: -1 for none)."""
             tick, rounds, limit = run[0], run[1], run[2]
             header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
-            header[SETTLED_TILES], header[TILE_ALLOWANCE], header[SCANNED] = 0, run[5], 0
+            header[SWEPT], header[SWEEP_ALLOWANCE], header[SCANNED] = 0, run[5], 0
             done, settled, focused, cut = 0, 0, 0, 0
             if not run[6]:
                 _list_active(stamps, queue, tick)
@@ -952,7 +953,7 @@ class _Kernels:
                 if queue[(tick + done) % 2, queue.shape[1] - 1] == 0:  # no tile active for the next round
                     settled = 1
             result[0], result[1], result[2] = done, settled, focused
-            result[3], result[4], result[5] = header[SETTLED_TILES], cut, -1
+            result[3], result[4], result[5] = header[SWEPT], cut, -1
             inside = PAD <= run[3] < values.shape[1] - PAD and PAD <= run[4] < values.shape[2] - PAD
             if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
                 result[5] = successor_move(values, pen, header, cap, 0, 0, run[3], run[4])
@@ -1160,8 +1161,8 @@ class _Layers:
         # A converge stopped before the fixed point (at its focus, or by max_rounds) leaves its active tiles and their
         # keys for the next converge.
         self.pending = False
-        self.cut_short = False  # the last converge stopped at max_rounds or max_tiles (not at its fixed point or focus)
-        self.settled_tiles = 0  # tiles the last converge settled on the calling thread
+        self.cut_short = False  # the last converge stopped at max_rounds or max_sweeps (not its fixed point or focus)
+        self.swept = 0  # sweeps of tiles the last converge made on the calling thread
         # (focus, index of its successor move) read by the last converge, until anything changes the values
         self.focus_move: tuple[tuple[int, int], int] | None = None
         # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
@@ -1299,16 +1300,16 @@ class _Layers:
         return dict(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                     origins=self.origins, cap=self.cap)
 
-    def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
+    def converge(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_sweeps: int = 0) -> int:
         """From the current values to the fixed point (with ``focus``, padded layer coordinates, as far as the
         focus needs: :meth:`_settle`); returns the rounds or buckets it took. A scalar layer's converge with no
         limits searches from the initial state (:meth:`_search`) and repairs after edits (:meth:`_repair`); every
         other converge settles rounds of tiles (:meth:`_settle`)."""
-        if self.lanes or max_rounds is not None or max_tiles:
-            return self._settle(max_rounds, focus, max_tiles)
+        if self.lanes or max_rounds is not None or max_sweeps:
+            return self._settle(max_rounds, focus, max_sweeps)
         return self._search(focus) if self.fresh else self._repair(focus)
 
-    def _settle(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_tiles: int = 0) -> int:
+    def _settle(self, max_rounds: int | None, focus: tuple[int, int] | None = None, max_sweeps: int = 0) -> int:
         """Repair: from the current values to the fixed point, in time that grows with the region the edits since
         the last converge affect. Returns the rounds done, at most ``max_rounds``.
 
@@ -1326,24 +1327,24 @@ class _Layers:
         With ``focus`` (padded layer coordinates), the tiles go in order of key plus distance from the focus and
         the converge stops once no pending tile can change the focus's value or successor chain
         (``settle_serially``): the rest stays pending (:attr:`pending`), keys and all, lifting included, for the next
-        converge. So does a converge cut short by ``max_rounds`` or, on the calling thread, by ``max_tiles`` tiles
-        settled (0: no limit; the rest of the round waits for the next converge); :attr:`settled_tiles` counts the
-        tiles it settled on the calling thread."""
+        converge. So does a converge cut short by ``max_rounds`` or, on the calling thread, by ``max_sweeps`` sweeps
+        of tiles (0: no limit; the rest of the round waits for the next converge); :attr:`swept` counts the sweeps it
+        made on the calling thread."""
         self._idle_sample, self.fresh = None, False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         result = np.zeros(6, np.int32)
-        self.settled_tiles = 0
+        self.swept = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
             self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
-                                         run=(self.tick, rounds, serial_limit, *aim, max_tiles, int(self.listed)))
+                                         run=(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed)))
             self.listed = True
             self.tick += int(result[0])
-            self.settled_tiles += int(result[3])
+            self.swept += int(result[3])
             state["focused"], state["cut"], state["move"] = bool(result[2]), bool(result[4]), int(result[5])
             self.round_open = state["cut"]
             return int(result[0]), bool(result[1] or result[2] or result[4])
@@ -1387,7 +1388,7 @@ class _Layers:
         self.kernels.search(**arrays, run=(*(focus or _NO_FOCUS), self.tick, 1))
         self.restart_s = time.perf_counter() - began
         self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
-        self.settled_tiles = 0
+        self.swept = 0
         self.pending, self.woken = bool(result[1]), self.tick
         self._idle_sample = self.focus_move = None
         return int(result[0])
@@ -1400,22 +1401,22 @@ class _Layers:
         RESTART_SHARE) times a restart, and a small one a slice or two. The result is the fixed point either way."""
         if self.restart_s is None:  # no search yet to tell what a restart costs
             return self._settle(None, focus)
-        allowance_s, spent_s, rounds, settled = RESTART_SHARE * self.restart_s, 0.0, 0, 0
-        tiles = max(_FEWEST_TILES, int(min(allowance_s / SLOWEST_TILE_S, _NEVER)))
+        allowance_s, spent_s, rounds, swept = RESTART_SHARE * self.restart_s, 0.0, 0, 0
+        sweeps = max(_FEWEST_SWEEPS, int(min(allowance_s / SLOWEST_SWEEP_S, _NEVER)))
         while True:
             began = time.perf_counter()
-            rounds += self._settle(None, focus, tiles)
+            rounds += self._settle(None, focus, sweeps)
             took_s = time.perf_counter() - began
             spent_s += took_s
-            settled += self.settled_tiles
+            swept += self.swept
             if not self.cut_short:
-                self.settled_tiles = settled
+                self.swept = swept
                 return rounds
             if spent_s >= allowance_s:
                 self.reset()
                 return rounds + self._search(focus)
-            tile_s = took_s / max(self.settled_tiles, 1)  # the next slice: what fits in the rest, at most 4x this one
-            tiles = max(_FEWEST_TILES, min(4 * tiles, int(min((allowance_s - spent_s) / tile_s, _NEVER))))
+            sweep_s = took_s / max(self.swept, 1)  # the next slice: what fits in the rest, at most 4x this one
+            sweeps = max(_FEWEST_SWEEPS, min(4 * sweeps, int(min((allowance_s - spent_s) / sweep_s, _NEVER))))
 
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""
@@ -1581,7 +1582,7 @@ class Engine:
         return sum(layers.changed() for layers in self._layers)
 
     def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None,
-                 max_tiles: int = 0) -> int:
+                 max_sweeps: int = 0) -> int:
         """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
         exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds it took
         (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
@@ -1591,9 +1592,10 @@ class Engine:
         successors from it to the goal: they are then those of the fixed point exactly, and the rest of the layer
         waits (:meth:`pending`) until a later converge needs it. Node layers always converge fully.
 
-        ``max_tiles`` (0: no limit) stops the goal layer's settling on the calling thread after that many tiles, in
-        the middle of a round if need be (:meth:`cut_short` then says so, and the next converge goes on): the
-        unit of an anytime repair's budget, since a round can be long. :meth:`settled_tiles` counts them.
+        ``max_sweeps`` (0: no limit) stops the goal layer's settling on the calling thread after that many sweeps
+        (passes over an 8 x 8 tile: settling a tile takes 1 to 32), in the middle of a round if need be
+        (:meth:`cut_short` then says so, and the next converge goes on): the unit of an anytime repair's budget,
+        since a round can be long and a tile's cost varies 30-fold. :meth:`swept` counts them.
 
         Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
         of SETTLE_BAND, PACKED_SETTLE_BAND for node layers, and alternating diagonal directions) and wakes the
@@ -1606,7 +1608,7 @@ class Engine:
             self._goal.reset()
             self._goal_moved = False
         focused = None if focus is None else (int(focus[0]) + PAD, int(focus[1]) + PAD)
-        rounds = max(layers.converge(max_rounds, *((focused, max_tiles) if layers is self._goal else (None, 0)))
+        rounds = max(layers.converge(max_rounds, *((focused, max_sweeps) if layers is self._goal else (None, 0)))
                      for layers in self._layers)
         self.iterations = 0
         return rounds
@@ -1617,13 +1619,14 @@ class Engine:
         return any(layers.pending for layers in self._layers)
 
     def cut_short(self) -> bool:
-        """Whether the last :meth:`converge` stopped at ``max_rounds`` or ``max_tiles``, before the fixed point or
+        """Whether the last :meth:`converge` stopped at ``max_rounds`` or ``max_sweeps``, before the fixed point or
         its focus."""
         return any(layers.cut_short for layers in self._layers)
 
-    def settled_tiles(self) -> int:
-        """Tiles of the goal layer the last :meth:`converge` settled on the calling thread."""
-        return self._goal.settled_tiles
+    def swept(self) -> int:
+        """Sweeps of the goal layer's tiles (passes over 8 x 8 cells) the last :meth:`converge` made on the calling
+        thread."""
+        return self._goal.swept
 
     def focus_successor(self, focus: tuple[int, int]) -> tuple[int, int] | None:
         """The goal layer's successor at ``focus``: as the last converge's last launch read it, when that converge

@@ -21,11 +21,12 @@ from .grid import GridMap
 from .navigator import NavigatorConfig
 from .stencil import escape_move, moves
 
-#: With a budget, a slice of a tick's repair settles at least this many 8 x 8 tiles (3-20 µs each on the 2-core VM),
-#: and as many more as the rate measured so far says fit in what is left after a slice's fixed cost.
-FIRST_TILES = 32
-#: A slice settles at most this many times the tiles of the slice before it: tiles cost 0.2-20 µs, and a rate
-#: measured on cheap ones (a raise wave) must not open the way to thousands of dear ones in one slice.
+#: With a budget, a slice of a tick's repair makes at least this many sweeps (a pass over an 8 x 8 tile, about
+#: 0.5-1.5 µs on the 2-core VM; settling a tile takes 1 to 32 of them), and as many more as the rate measured so far
+#: says fit in what is left after a slice's fixed cost. Counted in tiles settled, slices overran: tiles cost 0.2-25
+#: µs, and a rate measured on cheap ones opened the way to thousands of dear ones.
+FIRST_SWEEPS = 64
+#: A slice makes at most this many times the sweeps of the slice before it (a guard: sweeps cost about the same).
 GROWTH = 4
 
 
@@ -70,8 +71,8 @@ class ExactPlanner:
         self.nodes = np.zeros((0, 2), np.int32)
         self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
         self._moves = moves(config.neighbourhood, config.corner_cutting)
-        self._tile_s = 0.0  # seconds per tile settled, beyond the fixed cost, in the last slice that settled any
-        self._last_tiles = FIRST_TILES  # the tiles the last slice settled
+        self._sweep_s = 0.0  # seconds per sweep, beyond the fixed cost, in the last slice that made any
+        self._last_sweeps = FIRST_SWEEPS  # the sweeps the last slice made
         self._slice_s = 0.0  # the fixed cost of a slice (a converge launch with nothing to settle), from setup()
         # The cells whose route to the goal the last repair left exact (the robot's cell and its next step), or
         # none since an edit or a goal move: a tick that finds the robot on one of them has nothing to repair.
@@ -83,7 +84,7 @@ class ExactPlanner:
 
     def setup(self) -> int:
         """Compile the engine's kernels and converge the goal layer focused on the start, as D* Lite's first search
-        (A*'s order: a tile's key plus its distance from the start); returns the rounds it took. It settles what can
+        (the engine's search in A*'s order, ARCHITECTURE §7); returns the buckets it emptied. It settles what can
         be on the start's route or beat it and leaves the rest of the map pending (:meth:`Engine.pending`) until a
         tick's repair needs it; ``planner.engine.converge()`` completes the layer when a whole field is wanted."""
         self.engine.warm_up()
@@ -91,7 +92,7 @@ class ExactPlanner:
         idle = []
         for _ in range(3):  # a converge with nothing to do: what every slice of a budgeted repair costs at least
             began = time.perf_counter()
-            self.engine.converge(focus=self._focus(), max_tiles=FIRST_TILES)
+            self.engine.converge(focus=self._focus(), max_sweeps=FIRST_SWEEPS)
             idle.append(time.perf_counter() - began)
         self._slice_s = min(idle)
         return rounds
@@ -131,7 +132,7 @@ class ExactPlanner:
         return result
 
     def _repair(self, began: float) -> bool:
-        """Converge focused on the robot, in one go or, with a budget, in slices of settled tiles until it is through
+        """Converge focused on the robot, in one go or, with a budget, in slices of sweeps until it is through
         or the budget is spent; returns whether the robot's route is exact. Not called when the robot stands on the
         route the last repair left exact and nothing changed since: stepping along an exact route, every pending
         tile's priority falls by at most the step, and so does the robot's value (the focus test still holds)."""
@@ -142,14 +143,14 @@ class ExactPlanner:
         deadline = began + self.config.budget_ms / 1e3
         while True:
             sliced = time.perf_counter()
-            self.engine.converge(focus=focus, max_tiles=self._tiles_fitting(deadline - sliced))
+            self.engine.converge(focus=focus, max_sweeps=self._sweeps_fitting(deadline - sliced))
             now = time.perf_counter()
             if not self.engine.cut_short():
                 return True
-            if self.engine.settled_tiles():
-                self._tile_s = max(now - sliced - self._slice_s, 0.0) / self.engine.settled_tiles()
-                self._last_tiles = self.engine.settled_tiles()
-            if deadline - now <= self._slice_s + FIRST_TILES * self._tile_s:
+            if self.engine.swept():
+                self._sweep_s = max(now - sliced - self._slice_s, 0.0) / self.engine.swept()
+                self._last_sweeps = self.engine.swept()
+            if deadline - now <= self._slice_s + FIRST_SWEEPS * self._sweep_s:
                 return False
 
     def _focus(self) -> tuple[int, int] | None:
@@ -157,13 +158,13 @@ class ExactPlanner:
         escaping reads the values of its whole neighbourhood."""
         return None if self.engine.occupied[self.robot] else self.robot
 
-    def _tiles_fitting(self, left_s: float) -> int:
-        """How many tiles a slice may settle in ``left_s`` seconds at the rate measured so far (FIRST_TILES at
+    def _sweeps_fitting(self, left_s: float) -> int:
+        """How many sweeps a slice may make in ``left_s`` seconds at the rate measured so far (FIRST_SWEEPS at
         least, and while nothing is measured; GROWTH times the last slice's at most)."""
-        if self._tile_s <= 0:
-            return FIRST_TILES
-        fitting = int((left_s - self._slice_s) / self._tile_s)
-        return max(FIRST_TILES, min(fitting, GROWTH * max(self._last_tiles, FIRST_TILES)))
+        if self._sweep_s <= 0:
+            return FIRST_SWEEPS
+        fitting = int((left_s - self._slice_s) / self._sweep_s)
+        return max(FIRST_SWEEPS, min(fitting, GROWTH * max(self._last_sweeps, FIRST_SWEEPS)))
 
     def _distances(self, cells: list) -> np.ndarray:
         """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tdp.engine import Engine
+from tdp.engine import TILE, Engine
 from test_repair import apply, assert_equal_to_a_fresh_converge, launch_rounds
 
 OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "robot", "robot", "step"]
@@ -27,12 +27,13 @@ def route(engine: Engine, robot: tuple[int, int]) -> tuple[float, list[tuple[int
     return value, engine.trace(0, robot, engine.occupied.size)
 
 
-def repair_in_slices(engine: Engine, robot: tuple[int, int], tiles: int) -> None:
-    """converge(focus=robot), in slices of at most ``tiles`` settled tiles (0: one go) until it is through."""
-    engine.converge(focus=robot, max_tiles=tiles)
+def repair_in_slices(engine: Engine, robot: tuple[int, int], sweeps: int) -> None:
+    """converge(focus=robot), in slices of ``sweeps`` sweeps of tiles (0: one go) until it is through; a slice stops
+    before the tile that would begin past its allowance, so its last tile may add up to 4 * TILE - 1 more."""
+    engine.converge(focus=robot, max_sweeps=sweeps)
     while engine.cut_short():
-        assert engine.settled_tiles() <= tiles
-        engine.converge(focus=robot, max_tiles=tiles)
+        assert engine.swept() < sweeps + 4 * TILE
+        engine.converge(focus=robot, max_sweeps=sweeps)
 
 
 def assert_same_route(engine: Engine, robot: tuple[int, int], options: dict) -> None:
@@ -51,8 +52,8 @@ def assert_same_route(engine: Engine, robot: tuple[int, int], options: dict) -> 
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(focus_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.sampled_from([0, 1, 3]))
 def test_focused_repair_gives_the_robot_the_route_of_a_full_converge(monkeypatch, serially, sequence, neighbourhood,
-                                                                    corner_cutting, slice_tiles):
-    """... also when the repair runs in slices of ``slice_tiles`` settled tiles (0: in one go), as an anytime
+                                                                    corner_cutting, slice_sweeps):
+    """... also when the repair runs in slices of ``slice_sweeps`` sweeps of tiles (0: in one go), as an anytime
     planner's budget cuts it, in the middle of raise waves and lowering rounds."""
     launch_rounds(monkeypatch, serially)
     rows, cols, density, seed, operations = sequence
@@ -64,14 +65,14 @@ def test_focused_repair_gives_the_robot_the_route_of_a_full_converge(monkeypatch
     engine = Engine(occupied, goal, **options)
     free = np.argwhere(~occupied)
     robot = tuple(int(v) for v in free[rng.integers(len(free))])
-    repair_in_slices(engine, robot, slice_tiles)
+    repair_in_slices(engine, robot, slice_sweeps)
     assert_same_route(engine, robot, options)
     for operation in operations:
         if operation == "robot":
             robot = (int(rng.integers(rows)), int(rng.integers(cols)))
         else:
             apply(operation, engine, rng)
-        repair_in_slices(engine, robot, slice_tiles)
+        repair_in_slices(engine, robot, slice_sweeps)
         assert_same_route(engine, robot, options)
     engine.converge()
     assert not engine.pending()

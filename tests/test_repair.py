@@ -78,7 +78,7 @@ def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, resta
     the middle of a round (a tiny share)."""
     launch_rounds(monkeypatch, serially)
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
-    monkeypatch.setattr(engine_module, "_FEWEST_TILES", 1 if restart_share < 0.25 else 16)
+    monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1 if restart_share < 0.25 else 16)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
     occupied = rng.random((rows, cols)) < density
@@ -236,7 +236,7 @@ def test_a_box_sealing_off_most_of_a_maze_restarts_or_repairs_to_the_same_values
     the cap by the reset, never visited; repaired in rounds of tiles (no restart) they rise to it; either way the
     result is a fresh converge's."""
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
-    monkeypatch.setattr(engine_module, "_FEWEST_TILES", 1)
+    monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1)
     occupied = maze(129, corridor, seed=corridor)
     engine = Engine(occupied, (1, 1))
     engine.converge()
@@ -248,6 +248,6 @@ def test_a_box_sealing_off_most_of_a_maze_restarts_or_repairs_to_the_same_values
     box = box[~occupied[box[:, 0], box[:, 1]]]
     engine.set_cells(box, np.ones(len(box), bool))
     engine.converge()
-    assert (engine.settled_tiles() == 0) == (restart_share < 1)  # a search came last, or rounds of tiles did
+    assert (engine.swept() == 0) == (restart_share < 1)  # a search came last, or rounds of tiles did
     assert np.isinf(engine.goal_distances()[far])
     assert_equal_to_a_fresh_converge(engine, {})

@@ -61,7 +61,7 @@ def test_a_focused_search_gives_the_focus_its_route_and_leaves_later_rounds_noth
     engine.converge(focus=focus)
     assert_same_route(engine, focus, {})
     engine.converge(focus=focus)
-    assert engine.settled_tiles() == 0
+    assert engine.swept() == 0
     engine.converge()
     assert not engine.pending()
     full = Engine(occupied, goal)
