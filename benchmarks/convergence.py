@@ -2,21 +2,26 @@
 
     python -m benchmarks.convergence [--quick]
 
-Maps: random (20 % obstacles) of growing size, and with 30 % obstacles at 512² and 1024², each with goals at a
-corner, the centre and a random cell; the MovingAI maps in ../shared/data with several scenario goals each (skipped
-when absent); the ROS maps (turtlebot3's world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m)
-with random goals. The 16-neighbour graph is built once and timed apart; Dijkstra's solve and a from-scratch
-converge() (``reset()`` then ``converge()``) are timed in turn, warm, in the same process (their ratio is the median
-of each pair's; 5 times the repeats where the solve takes under 5 ms), scikit-fmm's whole-field distance (when
-installed; a different, continuous distance, timed only) as a warm median, and the field is checked equal to
-Dijkstra's.
+Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each
+with goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells
+wide (``tdp.random_worlds.maze``), goals at a corner, the centre and a random free cell; the MovingAI maps in
+../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's world, nav2's
+1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. The 16-neighbour graph is built once and
+timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are timed in turn,
+warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the solve takes
+under 5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm medians, where installed
+(``pip install tcod scikit-fmm``): tcod's ``dijkstra2d`` (C, one thread, the 16-neighbour edge map with integer
+costs x 1000; it cannot forbid corner cutting, so its graph has more edges than ours) and scikit-fmm's whole-field
+distance (a different, continuous distance).
 
 Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle
-of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, and a goal move; each
-timed as edit + ``converge()`` (the edit undone, untimed, between repeats), checked bit for bit against a fresh
-field's converge() on the edited map, and set against that field's from-scratch converge(), the two timed in turn
-(the ratio again the median of each pair's; as many pairs as fill about REPAIR_PAIRS_S seconds of from-scratch
-converges, from the repeats up to MAX_REPAIR_PAIRS).
+of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, a pocket sealed (a
+square ring of obstacles, side an eighth of the map's, around the farthest reachable cell: every cell inside rises
+to inf), the same pocket opened again (the ring removed, from the sealed field), and a goal move; each timed as edit
++ ``converge()`` (the edit undone, untimed, between repeats), checked bit for bit against a fresh field's converge()
+on the edited map, and set against that field's from-scratch converge(), the two timed in turn (the ratio again
+the median of each pair's; as many pairs as fill about REPAIR_PAIRS_S seconds of from-scratch converges, from the
+repeats up to MAX_REPAIR_PAIRS).
 """
 from __future__ import annotations
 
@@ -31,19 +36,24 @@ from scipy.sparse.csgraph import dijkstra
 import tdp
 from benchmarks.common import median_time, paired_times, print_table, quick_parser, save_results
 from benchmarks.reference_graph import grid_graph
+from tdp.random_worlds import maze
 
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "data"
 NAV2 = ROOT / "benchmarks" / "data" / "nav2_maps"
 ROBOT_RADIUS_M = 0.2
-SIZES, QUICK_SIZES = [256, 512, 1024, 2048], [64, 128]
-#: Random maps with 30 % obstacles as well (routes wind far more than at 20 %, and settling needs more rounds).
-DENSE_SIZES, QUICK_DENSE_SIZES, DENSE = [512, 1024], [64], 0.3
+SIZES, QUICK_SIZES = [128, 192, 256, 512, 1024, 2048], [64, 128]
+#: Dense random maps as well: (side, obstacle density); routes wind far more than at 20 %.
+DENSE, QUICK_DENSE = [(512, 0.3), (1024, 0.3), (512, 0.4)], [(64, 0.3)]
+#: Perfect mazes: (side, corridor width); a tile holds pieces of corridors at very different distances.
+MAZES, QUICK_MAZES = [(512, 1), (512, 2), (512, 4)], [(64, 1)]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
-LARGE = 65536  # maps from this size on get the repair cases and the worst-case target (4096 with --quick)
+LARGE = 65536  # maps from this size on get the repair cases (4096 with --quick)
+CONVERGE_LARGE = 32768  # maps from this size on count for the from-scratch converge's worst-case target
 FAST_S, FAST_REPEATS = 0.005, 5  # a reference solve under 5 ms gets 5 times the repeats: its timings are noisier
 WALL = 16
+REPAIRS = ("box", "wall", "seal", "open", "goal")
 #: Repairs are timed in pairs with a from-scratch converge until the from-scratch side adds up to about this many
 #: seconds (at most MAX_REPAIR_PAIRS pairs, at least the repeats): on a map that converges in 10-30 ms five pairs
 #: left a goal move, which is a restart by construction, anywhere in 0.85-1.25x.
@@ -53,6 +63,10 @@ try:
     import skfmm
 except ImportError:  # an optional reference: pip install scikit-fmm
     skfmm = None
+try:
+    import tcod.path
+except ImportError:  # an optional reference: pip install tcod
+    tcod = None
 
 
 def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
@@ -69,6 +83,16 @@ def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray,
         dense = "" if density == 0.2 else f"{round(100 * density)} % "
         cases.append((f"random {size}² {dense}{place}", grid, goal))
     return cases
+
+
+def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A perfect maze and its goals: the corner room, the free cell nearest the centre, a random free cell."""
+    occupied = maze(size, corridor, seed=size + corridor)
+    free = np.argwhere(~occupied)
+    centre = free[np.argmin(np.abs(free - size // 2).sum(axis=1))]
+    goals = {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
+             "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
+    return [(f"maze {size}² {corridor}-cell {place}", occupied, goal) for place, goal in goals.items()]
 
 
 def movingai_cases(name: str) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
@@ -128,6 +152,27 @@ def fmm_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
         return None
 
 
+#: tcod's edge map: the cost of each of the 16 moves (integers: lengths x 1000) at its offset from the centre.
+TCOD_EDGES = np.array([[round(1000 * math.hypot(dr, dc)) if (abs(dr), abs(dc)) in {(0, 1), (1, 0), (1, 1), (1, 2),
+                                                                                   (2, 1)} else 0
+                        for dc in range(-2, 3)] for dr in range(-2, 3)], np.int32)
+
+
+def tcod_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
+    """tcod's ``dijkstra2d`` over the 16-neighbour edge map from the goal (its distance array set afresh each time,
+    as a converge from scratch starts afresh), or None when tcod is absent."""
+    if tcod is None:
+        return None
+    cost = (~occupied).astype(np.int32)
+
+    def solve():
+        distance = np.full(occupied.shape, np.iinfo(np.int32).max, np.int32)
+        distance[goal] = 0
+        tcod.path.dijkstra2d(distance, cost, edge_map=TCOD_EDGES, out=distance)
+
+    return median_time(solve, repeats)
+
+
 def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: int) -> dict:
     rows, cols = occupied.shape
     began = time.perf_counter()
@@ -145,14 +190,16 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: i
     finite = np.isfinite(reference)
     exact = bool(np.array_equal(np.isfinite(ours), finite)) and bool(
         np.allclose(ours[finite], reference[finite], rtol=1e-5))
-    fmm_s = fmm_seconds(occupied, goal, repeats)
+    fmm_s, tcod_s = fmm_seconds(occupied, goal, repeats), tcod_seconds(occupied, goal, repeats)
     result = {"map": name, "cells": rows * cols, "build_ms": build_s * 1e3, "dijkstra_ms": dijkstra_s * 1e3,
               "converge_ms": converge_s * 1e3, "rounds": rounds, "ratio": ratio, "equal": exact,
               "fmm_ms": None if fmm_s is None else fmm_s * 1e3,
-              "fmm_ratio": None if fmm_s is None else converge_s / fmm_s}
+              "fmm_ratio": None if fmm_s is None else converge_s / fmm_s,
+              "tcod_ms": None if tcod_s is None else tcod_s * 1e3,
+              "tcod_ratio": None if tcod_s is None else converge_s / tcod_s}
     if rows * cols >= repair_cells:
         pairs = min(max(repeats, math.ceil(REPAIR_PAIRS_S / converge_s)), MAX_REPAIR_PAIRS)
-        result["repairs"] = [measure_repair(field, kind, reference, pairs) for kind in ("box", "wall", "goal")]
+        result["repairs"] = [measure_repair(field, kind, reference, pairs) for kind in REPAIRS]
     return result
 
 
@@ -166,9 +213,31 @@ def route_middle(field: tdp.DistanceField, reference: np.ndarray) -> tuple[tuple
     return path[middle], (after[0] - path[middle][0], after[1] - path[middle][1])
 
 
+def pocket_ring(field: tdp.DistanceField, reference: np.ndarray) -> list[tuple[int, int]]:
+    """The free cells of a square ring of side an eighth of the map's around the farthest reachable cell (clipped to
+    the map, whose edge closes it): blocked, it seals off the pocket inside."""
+    reachable = np.where(np.isfinite(reference), reference, -1.0)
+    r, c = (int(v) for v in np.unravel_index(np.argmax(reachable), reference.shape))
+    rows, cols = reference.shape
+    half = max(max(rows, cols) // 16, 2)
+    top, bottom, left, right = max(r - half, 0), min(r + half, rows - 1), max(c - half, 0), min(c + half, cols - 1)
+    ring = {(top, j) for j in range(left, right + 1)} | {(bottom, j) for j in range(left, right + 1)}
+    ring |= {(i, left) for i in range(top, bottom + 1)} | {(i, right) for i in range(top, bottom + 1)}
+    return sorted(cell for cell in ring if not field.occupied[cell] and cell != field.goal)
+
+
 def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
-    """(apply, undo) of one repair case on a converged field."""
+    """(apply, undo) of one repair case on a converged field; "open" leaves the field sealed (and converged) until
+    its undo."""
     goal = field.goal
+    if kind in ("seal", "open"):
+        ring = pocket_ring(field, reference)
+        seal, unseal = (lambda: field.set_occupied(ring)), (lambda: field.set_occupied(ring, False))
+        if kind == "seal":
+            return seal, unseal
+        seal()
+        field.converge()
+        return unseal, seal
     if kind == "goal":
         free = np.argwhere(~field.occupied)
         target = tuple(int(v) for v in free[np.random.default_rng(len(free)).integers(len(free))])
@@ -189,7 +258,8 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
 def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int) -> dict:
     """Edit + converge() from the converged field, against a fresh field's from-scratch converge() on the edited
     map, the two timed in turn; the ratio is the median of each pair's (the VM's speed drifts: pairing keeps it
-    out of the ratio)."""
+    out of the ratio). The field is left on its map, converged."""
+    before = field.occupied.copy()
     apply, undo = repair_edit(field, kind, reference)
     apply()
     fresh = field_on(field.occupied, field.goal)
@@ -207,6 +277,10 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
         began = time.perf_counter()
         from_scratch(fresh)
         scratches.append(time.perf_counter() - began)
+    changed = field.occupied != before  # an opening's undo left the pocket sealed
+    field.set_occupied(changed & before)
+    field.set_occupied(changed & ~before, False)
+    field.converge()
     repair_s, scratch_s = float(np.median(repairs[1:])), float(np.median(scratches[1:]))
     ratio = float(np.median(np.array(repairs[1:]) / np.array(scratches[1:])))
     return {"kind": kind, "repair_ms": repair_s * 1e3, "scratch_ms": scratch_s * 1e3,
@@ -226,17 +300,18 @@ def figure(results: list[dict], path: Path) -> None:
     left.invert_yaxis()
     left.set_xlabel("from-scratch converge() / scipy Dijkstra (lower is faster)")
     repaired = [r for r in results if r.get("repairs")]
-    colours = {"box": "tab:green", "wall": "tab:orange", "goal": "tab:red"}
-    for k, kind in enumerate(colours):  # one row per map, its three changes side by side
+    colours = dict(zip(REPAIRS, ["tab:green", "tab:orange", "tab:purple", "tab:cyan", "tab:red"]))
+    width = 0.8 / len(colours)
+    for k, kind in enumerate(colours):  # one row per map, its changes side by side
         ratios = [next(q["ratio"] for q in r["repairs"] if q["kind"] == kind) for r in repaired]
-        right.barh(np.arange(len(repaired)) + (k - 1) * 0.27, ratios, 0.27, color=colours[kind], label=kind)
+        right.barh(np.arange(len(repaired)) + (k - 2) * width, ratios, width, color=colours[kind], label=kind)
     right.set_yticks(range(len(repaired)), [r["map"] for r in repaired], fontsize=6)
     right.invert_yaxis()
     right.set_xscale("log")
     right.axvline(0.1, color="k", lw=0.8, ls="--")
     right.axvline(1.0, color="k", lw=0.8)
     right.set_xlabel("repair / from-scratch converge() (log)")
-    right.legend(fontsize=7, ncol=3, loc="lower center", bbox_to_anchor=(0.5, 1.0))
+    right.legend(fontsize=7, ncol=5, loc="lower center", bbox_to_anchor=(0.5, 1.0))
     save_figure(fig, path)
 
 
@@ -245,12 +320,13 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     if args.quick:
-        sizes, dense_sizes, maps = QUICK_SIZES, QUICK_DENSE_SIZES, QUICK_MAPS
+        sizes, dense, mazes, maps = QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_MAPS
     else:
-        sizes, dense_sizes, maps = SIZES, DENSE_SIZES, MAPS
+        sizes, dense, mazes, maps = SIZES, DENSE, MAZES, MAPS
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
-    cases += [case for size in dense_sizes for case in random_cases(size, DENSE)]
+    cases += [case for size, density in dense for case in random_cases(size, density)]
+    cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
         cases += ros_cases()
@@ -261,13 +337,11 @@ def main() -> None:
         repairs = "".join(f", {q['kind']} {q['repair_ms']:.1f} ms ({q['ratio']:.2f}x)" for q in r.get("repairs", []))
         print(f"  {name}: converge {r['converge_ms']:.1f} ms ({r['rounds']} rounds), "
               f"Dijkstra {r['dijkstra_ms']:.1f} ms{repairs}", flush=True)
-    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra",
-                 "scikit-fmm ms", "converge / fmm", "rounds", "equal"],
+    print_table(["map", "cells", "graph build ms", "Dijkstra ms", "converge ms", "converge / Dijkstra", "tcod ms",
+                 "converge / tcod", "scikit-fmm ms", "converge / fmm", "rounds", "equal"],
                 [[r["map"], str(r["cells"]), f"{r['build_ms']:.1f}", f"{r['dijkstra_ms']:.1f}",
-                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}",
-                  "-" if r["fmm_ms"] is None else f"{r['fmm_ms']:.1f}",
-                  "-" if r["fmm_ratio"] is None else f"{r['fmm_ratio']:.2f}", str(r["rounds"]), str(r["equal"])]
-                 for r in results])
+                  f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", *optional(r, "tcod"), *optional(r, "fmm"),
+                  str(r["rounds"]), str(r["equal"])] for r in results])
     print_table(["map", "change", "repair ms", "from scratch ms", "repair / from scratch", "equal"],
                 [[r["map"], q["kind"], f"{q['repair_ms']:.2f}", f"{q['scratch_ms']:.1f}", f"{q['ratio']:.3f}",
                   str(q["equal"])] for r in results for q in r.get("repairs", [])])
@@ -277,16 +351,28 @@ def main() -> None:
                  lambda png: figure(results, png))
 
 
+def optional(result: dict, reference: str) -> list[str]:
+    """A timed-only reference's ms and our ratio to it, as table cells ("-" when it is not installed)."""
+    ms, ratio = result[f"{reference}_ms"], result[f"{reference}_ratio"]
+    return ["-", "-"] if ms is None else [f"{ms:.1f}", f"{ratio:.2f}"]
+
+
 def summarise(results: list[dict]) -> dict:
-    """The issue's figures: median and worst from-scratch ratio (worst on maps of LARGE cells or more), and the
-    median and worst repair ratio for local changes (box, wall) and for any change."""
+    """The issue's figures: median and worst from-scratch ratio to scipy's Dijkstra (worst on maps of
+    CONVERGE_LARGE cells or more), the worst to tcod's, the median repair ratio for local changes (box, wall) and
+    the worst for any change, and the slowest 9-cell box repair on a 256² map."""
     ratios = [r["ratio"] for r in results]
-    large = [r["ratio"] for r in results if r["cells"] >= LARGE] or [float("nan")]
+    large = [r["ratio"] for r in results if r["cells"] >= CONVERGE_LARGE] or [float("nan")]
+    tcod_ratios = [r["tcod_ratio"] for r in results if r["tcod_ratio"] is not None] or [float("nan")]
     repairs = [q for r in results for q in r.get("repairs", [])]
-    local = [q["ratio"] for q in repairs if q["kind"] != "goal"] or [float("nan")]
+    local = [q["ratio"] for q in repairs if q["kind"] in ("box", "wall")] or [float("nan")]
     every = [q["ratio"] for q in repairs] or [float("nan")]
+    boxes_256 = [q["repair_ms"] for r in results if r["map"].startswith("random 256² ") for q in r.get("repairs", [])
+                 if q["kind"] == "box"] or [float("nan")]
     return {"converge_over_dijkstra_median": float(np.median(ratios)), "converge_over_dijkstra_worst_large":
-            float(max(large)), "local_repair_median": float(np.median(local)), "repair_worst": float(max(every)),
+            float(max(large)), "converge_over_tcod_worst": float(max(tcod_ratios)),
+            "local_repair_median": float(np.median(local)), "repair_worst": float(max(every)),
+            "box_repair_256_worst_ms": float(max(boxes_256)),
             "all_equal": all(r["equal"] for r in results) and all(q["equal"] for q in repairs)}
 
 
