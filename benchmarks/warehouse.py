@@ -9,8 +9,10 @@ there ("appear"; run for twice as many ticks so that the robot meets it). Per wo
 and with a 1 ms budget), accelerating nodes (25 nodes) and plain DP at K = 4, and accelerating nodes with a time
 budget of 1 ms per tick instead of a fixed K:
 
-* setup: ``Navigator(...)`` (node placement, windows) plus ``setup()`` (every layer converged), warm: a first
-  navigator of the same kind compiled every kernel in this process;
+* setup: ``Navigator(...)`` (node placement, windows) plus ``setup()`` (every layer converged; the exact
+  planner's goal layer as far as the start needs), warm: a first navigator of the same kind compiled every kernel
+  in this process; apart, per seed, the exact planner's setup with the start moved to the reachable cell farthest
+  from the goal (its worst case);
 * tick: the planner's ``tick()`` (the exact planner's repair and successor; the DP planners' iterations,
   monitor, search), median, 95th percentile and maximum over the run's ticks (TICKS at most, twice that in
   "appear" worlds; fewer when the robot arrives); apart, the map hand-over: the planner's ``update_map`` of the
@@ -98,6 +100,20 @@ def recompute_ms(scenario: tdp.Scenario) -> dict:
             "dijkstra_ms": median_time(lambda: dijkstra(graph, indices=source), 3) * 1e3}
 
 
+def far_setup_ms(scenario: tdp.Scenario, repeats: int = 3) -> dict:
+    """The exact planner's setup (construction and ``setup()``, median of ``repeats``) with the world's goal and the
+    start moved to the reachable cell farthest from it: the worst case of a search focused on the start."""
+    grid = start_grid(scenario)
+    field = tdp.DistanceField(grid, scenario.goal)
+    field.converge()
+    distances = np.where(np.isfinite(field.distances()), field.distances(), -1.0)
+    far = tuple(int(v) for v in np.unravel_index(np.argmax(distances), distances.shape))
+    config = tdp.NavigatorConfig(planner="exact")
+    return {"far_start": far, "far_cells": float(distances[far]),
+            "far_setup_ms": median_time(lambda: tdp.make_planner(grid, far, scenario.goal, config).setup(), repeats)
+            * 1e3}
+
+
 def figure(rows: list[dict], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
@@ -127,9 +143,13 @@ def main() -> None:
     scenarios = worlds(args.quick, args.seeds)
     for _, options in PLANNERS:  # compile every kernel of both kinds (excluded from every timing)
         navigator(scenarios[0], tdp.NavigatorConfig(**options)).setup()
-    rows = []
+    rows, far = [], []
     for scenario in scenarios:
         reference = recompute_ms(scenario)
+        if scenario.change_tick is None:  # one per seed: both worlds share the map and the goal
+            far.append({"world": scenario.name, **far_setup_ms(scenario)})
+            print(f"  {scenario.name}: exact setup {far[-1]['far_setup_ms']:.0f} ms with the start "
+                  f"{far[-1]['far_cells']:.0f} cells from the goal", flush=True)
         for name, options in PLANNERS:
             limit = ticks if scenario.change_tick is None else 2 * ticks
             rows.append({"world": scenario.name, "planner": name, **run(scenario, options, limit), **reference})
@@ -143,9 +163,11 @@ def main() -> None:
                   str(r["ticks"]), f"{r['tick_median_ms']:.2f}", f"{r['tick_p95_ms']:.2f}", f"{r['tick_max_ms']:.1f}",
                   f"{r['update_median_ms']:.2f}", f"{r['recompute_ms']:.0f}", f"{r['dijkstra_ms']:.0f}",
                   str(r["collisions"]), "yes" if r["reached"] else "no"] for r in rows])
+    print_table(["world", "farthest start", "its distance (cells)", "exact setup ms"],
+                [[r["world"], str(r["far_start"]), f"{r['far_cells']:.0f}", f"{r['far_setup_ms']:.0f}"] for r in far])
     name = "warehouse" + ("-quick" if args.quick else "") + ("" if args.seeds == SEEDS else "-seeds-" +
                                                              "-".join(map(str, args.seeds)))
-    save_results(name, {"rows": rows}, lambda png: figure(rows, png))
+    save_results(name, {"rows": rows, "far_setup": far}, lambda png: figure(rows, png))
 
 
 if __name__ == "__main__":

@@ -112,10 +112,12 @@ SEARCH_BUCKETS = 8
 #: (and a priority carries float rounding).
 SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: A repair after edits (``_Layers._repair``) gives up for a restart from the initial state once it has taken this
-#: share of the last search's time (0.5 left 1.6-1.8x a restart on 1-cell mazes, where a box seals a pocket). Its
+#: share of the last search's time. On the convergence benchmark's 512² maps 0.25 kept the worst edit (a box sealing
+#: most of a maze) at 1.65x a restart but made every repair that needs a quarter to all of one cost 1.25x one (the
+#: median box or wall 1.14x); 0.5: median 0.44x, worst 2.3x; 1.0: 0.41x and 3.5x. Its
 #: first slice makes the sweeps that fit in that time at SLOWEST_SWEEP_S each (1.1-2.2 µs measured on the 2-core VM,
 #: mazes the dearest), each later one what the rate measured says fits in the rest, 4x the last at most.
-RESTART_SHARE = 0.25
+RESTART_SHARE = 0.5
 SLOWEST_SWEEP_S = 2.5e-6
 _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
