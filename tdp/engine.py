@@ -718,9 +718,9 @@ def _search_rules(cell: dict) -> dict:
     in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value).
 
-    ``links`` (padded cells + SEARCH_BUCKETS, 2) int32: column 0 each listed cell's next cell in its bucket, and in
-    the last SEARCH_BUCKETS rows each bucket's first; column 1 the previous cell, ``_UNLISTED`` for a cell in no
-    bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
+    ``links`` (2, padded cells + SEARCH_BUCKETS) int32: row 0 each listed cell's next cell in its bucket, and in its
+    last SEARCH_BUCKETS entries each bucket's first; row 1 the previous cell, ``_UNLISTED`` for a cell in no bucket,
+    -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
     blocked, crossing = cell["blocked"], cell["crossing"]
     moves = cell["moves"]
 
