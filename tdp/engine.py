@@ -116,10 +116,15 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: most of a maze) at 1.65x a restart but made every repair that needs a quarter to all of one cost 1.25x one (the
 #: median box or wall 1.14x); 0.5: median 0.44x, worst 2.3x; 1.0: 0.41x and 3.5x. Its
 #: first slice makes the sweeps that fit in that time at SLOWEST_SWEEP_S each (1.1-2.2 µs measured on the 2-core VM,
-#: mazes the dearest), each later one what the rate measured says fits in the rest, 4x the last at most.
+#: mazes the dearest), each later one what the rate measured says fits in the rest, SLICE_GROWTH times the last at
+#: most (``sweeps_fitting``).
 RESTART_SHARE = 0.5
 SLOWEST_SWEEP_S = 2.5e-6
 _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
+#: A slice of a sliced converge (a repair's here, a budgeted tick's in :class:`tdp.ExactPlanner`) makes at most this
+#: many times the sweeps of the slice before it: sweeps cost about the same, but a rate measured on one slice's work
+#: need not hold for the next's.
+SLICE_GROWTH = 4
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 8
@@ -152,6 +157,12 @@ def init_taichi() -> None:
     logging.getLogger(__name__).debug(said.getvalue().strip())
     _initialised = True
     _on_cpu = arch == ti.cpu
+
+
+def sweeps_fitting(left_s: float, sweep_s: float, fewest: int, most: int) -> int:
+    """The sweeps (passes over an 8 x 8 tile) a slice of a converge may make in ``left_s`` seconds at ``sweep_s``
+    seconds each: as many as fit, ``fewest`` at least and ``most`` at most."""
+    return max(fewest, min(most, int(min(left_s / sweep_s, _NEVER))))
 
 
 def _serial_limit(tiles: int) -> int:
@@ -660,8 +671,8 @@ def _tile_rules(cell: dict) -> dict:
         priority below ``bound``, else those with a priority at most ``bound``. With a ``queue`` (None: a parallel
         loop over every tile, at a kernel's top level) the round runs on the calling thread over its work list, or,
         when that holds over a quarter of the tiles, over every tile in the round's diagonal direction
-        (``_oriented``, as fast sweeping); it builds the next round's list as it goes; once the launch's tile
-        allowance is spent (``_spent``) the round stops, open (header[ROUND_CURSOR]: the entry the next launch goes
+        (``_oriented``, as fast sweeping); it builds the next round's list as it goes; once the launch's allowance of
+        sweeps is spent (``_spent``) the round stops, open (header[ROUND_CURSOR]: the entry the next launch goes
         on from). Returns the number of tiles that changed or wait (0: settled)."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
@@ -909,9 +920,9 @@ class _Kernels:
         @kernel
         def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
                             cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, tiles,
-            listed)): up to ``rounds`` rounds and ``tiles`` tiles settled (0: any number; a round whose tiles are
-            spent stays open, and the next launch goes on with it; scans count against the limit: ``_spent``) until
+            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, sweeps,
+            listed)): up to ``rounds`` rounds and ``sweeps`` sweeps of tiles (0: any number; a round whose sweeps
+            are spent stays open, and the next launch goes on with it; scans count against them: ``_spent``) until
             settled, until more than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1:
             none) - until no pending tile can change the focus's value or successors: every active tile's lowering
             key known, and the lowest priority at least the focus's value (a pending cell can only fall to its
@@ -919,8 +930,8 @@ class _Kernels:
             focus through either is at least its distance longer: ARCHITECTURE §6.1). Each round works through a
             list of its active tiles (``queue``, built as the round before stamps them, and kept between launches by
             ``paint``: ``listed`` 1; 0 lists the active tiles first), so a small repair on a large map does not pass
-            over every tile. result = (rounds done, settled, stopped at the focus, tiles settled, stopped by
-            ``tiles``, the index of the focus's successor move: -1 for none)."""
+            over every tile. result = (rounds done, settled, stopped at the focus, sweeps made, stopped by
+            ``sweeps``, the index of the focus's successor move: -1 for none)."""
             tick, rounds, limit = run[0], run[1], run[2]
             header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
             header[SWEPT], header[SWEEP_ALLOWANCE], header[SCANNED] = 0, run[5], 0
@@ -1407,7 +1418,7 @@ class _Layers:
         if self.restart_s is None or focus is not None:  # no search yet to price a restart, or a planner's tick
             return self._settle(None, focus)
         allowance_s, spent_s, rounds, swept = RESTART_SHARE * self.restart_s, 0.0, 0, 0
-        sweeps = max(_FEWEST_SWEEPS, int(min(allowance_s / SLOWEST_SWEEP_S, _NEVER)))
+        sweeps = sweeps_fitting(allowance_s, SLOWEST_SWEEP_S, _FEWEST_SWEEPS, _NEVER)
         while True:
             began = time.perf_counter()
             rounds += self._settle(None, focus, sweeps)
@@ -1420,8 +1431,8 @@ class _Layers:
             if spent_s >= allowance_s:
                 self.reset()
                 return rounds + self._search(focus)
-            sweep_s = took_s / max(self.swept, 1)  # the next slice: what fits in the rest, at most 4x this one
-            sweeps = max(_FEWEST_SWEEPS, min(4 * sweeps, int(min((allowance_s - spent_s) / sweep_s, _NEVER))))
+            sweeps = sweeps_fitting(allowance_s - spent_s, took_s / max(self.swept, 1), _FEWEST_SWEEPS,
+                                    SLICE_GROWTH * sweeps)
 
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""
@@ -1589,8 +1600,14 @@ class Engine:
     def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None,
                  max_sweeps: int = 0) -> int:
         """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
-        exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds it took
-        (the larger count of the two kinds of layer); ``iterations`` is 0 after it.
+        exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds (or
+        the goal layer's search buckets) it took, the larger count of the two kinds of layer; ``iterations`` is 0
+        after it.
+
+        From the initial state (construction, :meth:`reset`, a goal move) the goal layer is searched cell by cell
+        instead (:meth:`_Layers._search`: Dijkstra's order with buckets one cell wide, A*'s with a focus), unless
+        ``max_rounds`` or ``max_sweeps`` limits the converge; an unfocused repair without limits gives up for such
+        a search once it has taken RESTART_SHARE of the last one's time (:meth:`_Layers._repair`).
 
         ``focus``, a cell (row, col): a focused repair, as D* Lite's. The goal layer settles in order of key plus
         Euclidean distance from the cell and stops as soon as nothing pending can change the cell's value or the

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import checks
 from .contract import Mode, TickResult
-from .engine import Engine
+from .engine import SLICE_GROWTH, Engine, sweeps_fitting
 from .field import cells_from
 from .grid import GridMap
 from .navigator import NavigatorConfig
@@ -26,8 +26,6 @@ from .stencil import escape_move, moves
 #: says fit in what is left after a slice's fixed cost. Counted in tiles settled, slices overran: tiles cost 0.2-25
 #: µs, and a rate measured on cheap ones opened the way to thousands of dear ones.
 FIRST_SWEEPS = 64
-#: A slice makes at most this many times the sweeps of the slice before it (a guard: sweeps cost about the same).
-GROWTH = 4
 
 
 class ExactPlanner:
@@ -159,12 +157,13 @@ class ExactPlanner:
         return None if self.engine.occupied[self.robot] else self.robot
 
     def _sweeps_fitting(self, left_s: float) -> int:
-        """How many sweeps a slice may make in ``left_s`` seconds at the rate measured so far (FIRST_SWEEPS at
-        least, and while nothing is measured; GROWTH times the last slice's at most)."""
+        """How many sweeps a slice may make in ``left_s`` seconds, less a slice's fixed cost, at the rate measured
+        so far (``sweeps_fitting``: FIRST_SWEEPS at least, and while nothing is measured; SLICE_GROWTH times the last
+        slice's at most)."""
         if self._sweep_s <= 0:
             return FIRST_SWEEPS
-        fitting = int((left_s - self._slice_s) / self._sweep_s)
-        return max(FIRST_SWEEPS, min(fitting, GROWTH * max(self._last_sweeps, FIRST_SWEEPS)))
+        return sweeps_fitting(left_s - self._slice_s, self._sweep_s, FIRST_SWEEPS,
+                              SLICE_GROWTH * max(self._last_sweeps, FIRST_SWEEPS))
 
     def _distances(self, cells: list) -> np.ndarray:
         """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""

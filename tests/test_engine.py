@@ -257,3 +257,13 @@ def test_dropped_engines_hand_their_node_windows_back():
     for _ in range(4):
         build_and_drop()
     assert resident_mb() - before < 139
+
+
+def test_sweeps_fitting_is_what_fits_between_its_bounds():
+    """A slice's size (the exact planner's budgeted ticks and the engine's repairs share it): the sweeps that fit
+    in the time left at the rate given, never fewer than ``fewest`` (also when no time is left) nor more than
+    ``most``."""
+    assert engine_module.sweeps_fitting(1e-3, 2e-6, 16, 10**6) == 500
+    assert engine_module.sweeps_fitting(1e-3, 2e-6, 16, 100) == 100
+    assert engine_module.sweeps_fitting(-1e-3, 2e-6, 16, 100) == 16
+    assert engine_module.sweeps_fitting(1e9, 1e-9, 16, 2**40) == engine_module._NEVER
