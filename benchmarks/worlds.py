@@ -72,7 +72,7 @@ def waits_with_a_move(scenario: tdp.Scenario, record: dict, config: tdp.Navigato
     count = 0
     for tick, (mode, cell) in enumerate(zip(record["modes"], record["trajectory"][:-1]), start=1):
         occupied, target = scenario.occupancy(tick), scenario.target(tick)
-        if mode != "wait" or occupied[cell] or occupied[target]:
+        if mode is not tdp.Mode.WAIT or occupied[cell] or occupied[target]:
             continue
         field = tdp.DistanceField(tdp.GridMap(occupied), target, config.neighbourhood, config.corner_cutting)
         field.converge()

@@ -11,7 +11,7 @@ import numpy as np
 import pybullet as p
 
 import tdp
-from tdp.contract import TickResult, WorldFeed, detection_records, landmarks, timing_summary
+from tdp.contract import Mode, TickResult, WorldFeed, detection_records, landmarks, timing_summary
 from tdp.simulate import oracle_run
 
 from .control import PurePursuit
@@ -138,7 +138,7 @@ class _Run:
         last = self.robot.pose()
         for step in range(steps):
             if step % steps_per_control == 0:
-                if result.mode == "wait" and escape is None:
+                if result.mode is Mode.WAIT and escape is None:
                     v, w = self.controller.stop(control_dt)
                 else:
                     v, w = self.controller.steer(last, route, control_dt)

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 import tdp
-from tdp.navigator import planner_label
+from tdp.config import planner_label
 from tdp.plot import MODE_COLOURS, box_patch, pyplot, draw_map, save_figure
 
 

@@ -7,7 +7,8 @@ from .contract import Mode, Planner, TickResult
 from .exact import ExactPlanner
 from .field import DistanceField
 from .grid import GridMap, Problem, load_map, load_scenarios
-from .navigator import Navigator, NavigatorConfig
+from .config import NavigatorConfig
+from .navigator import Navigator
 from .planners import make_planner
 from .simulate import Episode, simulate
 from .world import Obstacle, Scenario

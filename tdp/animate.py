@@ -12,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .navigator import planner_label
+from .config import planner_label
+from .contract import Mode
 from .plot import MODE_COLOURS, draw_map, pyplot
 from .simulate import Episode
 from .world import Scenario
@@ -63,7 +64,7 @@ class _Panel:
         self.scenario, self.episode = scenario, episode
         self.nodes = np.array(episode.nodes, float).reshape(-1, 2)
         self.trajectory = np.array(episode.trajectory, float)
-        self.modes = np.array([str(m) for m in episode.modes])
+        self.modes = list(episode.modes)
         self.target = [tuple(t) for t in _target_path(scenario, episode)]
         draw_map(ax, scenario.grid.occupied)
         ax.set_title(planner_label(episode.config), fontsize=9)
@@ -84,9 +85,8 @@ class _Panel:
         t = min(tick, episode.ticks)
         boxes = self.scenario.occupancy(t) & ~self.scenario.grid.occupied
         self.boxes.set_data(np.ma.masked_array(np.ones(boxes.shape), mask=~boxes))
-        modes = self.modes[:t]
         for mode, trail in self.trails.items():
-            cells = self.trajectory[1:t + 1][modes == mode] if len(modes) else np.zeros((0, 2))
+            cells = self.trajectory[1:t + 1][[m is mode for m in self.modes[:t]]] if t else np.zeros((0, 2))
             trail.set_data(cells[:, 1], cells[:, 0])
         robot = self.trajectory[t]
         self.robot.set_data([robot[1]], [robot[0]])
@@ -95,13 +95,13 @@ class _Panel:
         self.blocked.set_data(*_segments(self.nodes, [d["pair"] for d in episode.detections
                                                       if t - BLOCKED_TICKS < d["tick"] <= t]))
         self.backup.set_data(*self._backup_route(t, robot, goal))
-        mode = self.modes[t - 1] if 0 < t <= len(self.modes) else "dp"
+        mode = self.modes[t - 1] if 0 < t <= len(self.modes) else Mode.DP
         self.label.set_text(f"tick {t}  {mode}")
         return [self.boxes, self.blocked, self.backup, self.robot, self.goal, self.label, *self.trails.values()]
 
     def _backup_route(self, tick: int, robot, goal) -> tuple[list, list]:
         """The last backup path found up to ``tick``, while the robot is following it."""
-        if not (0 < tick <= len(self.modes)) or self.modes[tick - 1] != "backup":
+        if not (0 < tick <= len(self.modes)) or self.modes[tick - 1] is not Mode.BACKUP:
             return [], []
         found = [b for b in self.episode.backups if b["tick"] <= tick]
         if not found:

@@ -76,3 +76,12 @@ def segment_near_path(a: np.ndarray, b: np.ndarray, path: np.ndarray, reach: flo
     t = np.zeros(len(path)) if length2 == 0 else np.clip((path - a) @ ab / length2, 0.0, 1.0)
     nearest = a + t[:, None] * ab
     return bool((np.hypot(*(path - nearest).T) <= reach).any())
+
+
+def polyline_cells(corners: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """The cells along the straight legs between consecutive ``corners`` (cells), each leg's ends included."""
+    cells = []
+    for a, b in zip(corners, corners[1:]):
+        steps = int(max(abs(b[0] - a[0]), abs(b[1] - a[1]))) + 1
+        cells += [tuple(cell) for cell in np.rint(np.linspace(a, b, steps)).astype(int)]
+    return cells

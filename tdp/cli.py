@@ -42,7 +42,7 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_planner_argument(parser: argparse.ArgumentParser) -> None:
     """--planner: the planner of the run (NavigatorConfig's ``planner``)."""
-    from tdp.navigator import PLANNERS
+    from tdp.config import PLANNERS
 
     parser.add_argument("--planner", choices=PLANNERS, default="exact",
                         help="exact replanning every tick (default), the paper's accelerating nodes, or plain DP")

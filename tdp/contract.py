@@ -8,9 +8,10 @@ then asks :meth:`Planner.tick` where to go. :class:`WorldFeed` does the first tw
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Protocol, Sequence
+from typing import Iterator, Protocol, Sequence
 
 import numpy as np
 
@@ -19,8 +20,8 @@ class Mode(str, Enum):
     """What the robot did on a tick: followed the goal layer (``DP``), a backup subgoal's layer (``BACKUP``), the
     goal layer repaired exactly for its route (``EXACT``) or, with a budget that ran out first, as far as the repair
     got (``BEHIND``), D* Lite's search (``DSTAR``), stayed where it was (``WAIT``), or stayed because a box is
-    predicted to enter the cell it would have moved to (``YIELD``, with obstacle prediction on). Modes compare equal
-    to their strings ("dp", "backup", ...) and are written as those strings."""
+    predicted to enter the cell it would have moved to (``YIELD``, with obstacle prediction on). A mode is written
+    (``str``, JSON) as its value: "dp", "backup", ...; code compares modes with the members, never with strings."""
 
     DP = "dp"
     BACKUP = "backup"
@@ -29,8 +30,6 @@ class Mode(str, Enum):
     EXACT = "exact"
     BEHIND = "behind"
     DSTAR = "d*lite"
-
-    __hash__ = str.__hash__  # hash as the string, so that a dict keyed by "dp" finds Mode.DP
 
     def __str__(self) -> str:
         return self.value
@@ -59,6 +58,22 @@ class TickResult:
     switched_back: bool = False
     iterations: int = 0  # DP iterations the tick ran
     timings: dict = field(default_factory=dict)
+
+
+class PhaseClock:
+    """Seconds a tick spends in each phase: ``with clock("dp"): ...`` adds the block's wall time to
+    ``clock.seconds["dp"]`` (a :attr:`TickResult.timings`)."""
+
+    def __init__(self, *phases: str):
+        self.seconds = dict.fromkeys(phases, 0.0)
+
+    @contextmanager
+    def __call__(self, phase: str) -> Iterator[None]:
+        began = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.seconds[phase] = self.seconds.get(phase, 0.0) + time.perf_counter() - began
 
 
 class Planner(Protocol):

@@ -8,7 +8,6 @@ merged, and the robot follows the partly repaired layer meanwhile (see :class:`E
 """
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
@@ -18,8 +17,8 @@ from .contract import Mode, TickResult
 from .engine import SLICE_GROWTH, Engine, sweeps_fitting
 from .field import cells_from
 from .grid import GridMap
-from .navigator import NavigatorConfig
-from .stencil import escape_move, moves
+from .config import NavigatorConfig
+from .stencil import RobotMoves
 
 #: With a budget, a slice of a tick's repair makes at least this many sweeps (a pass over an 8 x 8 tile, about
 #: 0.5-1.5 µs on the 2-core VM; settling a tile takes 1 to 32 of them), and as many more as the rate measured so far
@@ -67,8 +66,7 @@ class ExactPlanner:
         self.engine = Engine(grid.occupied, grid.check_free_cell(goal, "goal"), goal_cap=config.d_max,
                              neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting)
         self.nodes = np.zeros((0, 2), np.int32)
-        self._walls = grid.occupied.copy()  # the map's own obstacles: occupied in ``grid`` and never freed since
-        self._moves = moves(config.neighbourhood, config.corner_cutting)
+        self.moves = RobotMoves(grid.occupied, config.neighbourhood, config.corner_cutting, config.d_max)
         self._sweep_s = 0.0  # seconds per sweep, beyond the fixed cost, in the last slice that made any
         self._last_sweeps = FIRST_SWEEPS  # the sweeps the last slice made
         self._slice_s = 0.0  # the fixed cost of a slice (a converge launch with nothing to settle), from setup()
@@ -99,7 +97,7 @@ class ExactPlanner:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         flags = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
-        self._walls[cells[~flags, 0], cells[~flags, 1]] = False
+        self.moves.freed(cells, flags)
         self.engine.set_cells(cells, flags)
         if len(cells):
             self._exact_from = ()
@@ -122,7 +120,7 @@ class ExactPlanner:
         step = None if self.robot == self.goal else self.engine.focus_successor(self.robot)
         self._exact_from = (self.robot,) + ((step,) if step else ()) if exact else ()
         if self.engine.occupied[self.robot]:
-            step = escape_move(self.engine.occupied, self.robot, self._moves, self._distances, self._walls) or step
+            step = self.moves.escape(self.engine.occupied, self.robot, self._goal_values) or step
         moving = step is not None or self.robot == self.goal
         mode = (Mode.EXACT if exact else Mode.BEHIND) if moving else Mode.WAIT
         result = TickResult(mode=mode, next_cell=step)
@@ -165,10 +163,9 @@ class ExactPlanner:
         return sweeps_fitting(left_s - self._slice_s, self._sweep_s, FIRST_SWEEPS,
                               SLICE_GROWTH * max(self._last_sweeps, FIRST_SWEEPS))
 
-    def _distances(self, cells: list) -> np.ndarray:
-        """The goal layer at ``cells``, inf where the goal is not reached (for the way out of an obstacle)."""
-        values = self.engine.sample(cells)[:, 0].astype(np.float64)
-        return np.where(values >= self.config.d_max, np.inf, values)
+    def _goal_values(self, cells: list) -> np.ndarray:
+        """The goal layer at ``cells`` (for the way out of an obstacle)."""
+        return self.engine.sample(cells)[:, 0]
 
     def route(self, steps: int) -> list[tuple[int, int]]:
         """Up to ``steps`` cells the robot would follow from its cell now (the goal layer's successors); empty at

@@ -186,6 +186,31 @@ class NodeGraph:
         return [(int(i), int(j), float(self.pairs[i, j])) for i, j in zip(a, b)]
 
 
+class Vertices:
+    """The node graph's id space and its conversions, in one place: vertex j < n is node j, whose layer is engine
+    layer 1 + j (column 1 + j of :meth:`~tdp.engine.Engine.sample`); R is vertex n; G is vertex n + 1, whose layer
+    is the goal layer (layer 0). ``nodes`` (n, 2) are the nodes' cells."""
+
+    def __init__(self, nodes: np.ndarray):
+        self.nodes = nodes
+        self.robot = len(nodes)
+        self.goal = len(nodes) + 1
+
+    def layer(self, vertex: int) -> int:
+        """The engine layer of ``vertex``: 1 + j for node j, 0 (the goal layer) for G."""
+        return 1 + vertex if vertex < self.robot else 0
+
+    def cell(self, vertex: int, robot: tuple[int, int], goal: tuple[int, int]) -> tuple[int, int]:
+        """The cell of ``vertex`` while the robot is at ``robot`` and the goal at ``goal``."""
+        if vertex < self.robot:
+            return tuple(int(v) for v in self.nodes[vertex])
+        return robot if vertex == self.robot else goal
+
+    def cells(self, robot: tuple[int, int], goal: tuple[int, int]) -> np.ndarray:
+        """Every vertex's cell in id order (the nodes, R, G): where :class:`NodeGraph` reads the layers."""
+        return np.vstack([self.nodes, [robot], [goal]])
+
+
 def choose_subgoal(path: list[int], graph: NodeGraph) -> int:
     """The vertex a backup heads for on ``path`` = <R, Q1, Q2, ..., G> (paper 4.2, ARCHITECTURE §5.5): Q2, or Q1
     when R is outside Q2's vision (its layer at R >= DmaxQ), or the last point when the path is shorter. Q2 may be G

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from .exact import ExactPlanner
 from .grid import GridMap
-from .navigator import Navigator, NavigatorConfig
+from .config import NavigatorConfig
+from .navigator import Navigator
 
 
 def make_planner(grid: GridMap, start: tuple[int, int], goal: tuple[int, int],

@@ -5,8 +5,9 @@ from pathlib import Path
 
 import numpy as np
 
+from .config import planner_label
+from .contract import Mode
 from .grid import GridMap
-from .navigator import planner_label
 
 
 def pyplot():
@@ -58,8 +59,8 @@ def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path
     return save_figure(fig, out)
 
 
-MODE_COLOURS = {"dp": "tab:blue", "backup": "tab:orange", "wait": "tab:red", "yield": "tab:purple",
-                "exact": "tab:green", "behind": "tab:olive", "d*lite": "tab:cyan"}
+MODE_COLOURS = {Mode.DP: "tab:blue", Mode.BACKUP: "tab:orange", Mode.WAIT: "tab:red", Mode.YIELD: "tab:purple",
+                Mode.EXACT: "tab:green", Mode.BEHIND: "tab:olive", Mode.DSTAR: "tab:cyan"}
 
 
 def box_patch(plt, box, **style):

@@ -8,10 +8,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import checks
-from .contract import Planner, WorldFeed, detection_records, landmarks, timing_summary
+from .config import NavigatorConfig
+from .contract import Mode, Planner, WorldFeed, detection_records, landmarks, timing_summary
 from .exact import ExactPlanner
 from .grid import GridMap
-from .navigator import NavigatorConfig
 from .planners import make_planner
 from .stencil import moves
 from .world import Scenario, box_distance
@@ -34,7 +34,7 @@ class Episode:
     iterations: int
     detections: list[dict]
     trajectory: list[tuple[int, int]]
-    modes: list[str]
+    modes: list[Mode]
     target_path: list[tuple[int, int]]
     oracle_trajectory: list[tuple[int, int]]
     nodes: list[tuple[int, int]]

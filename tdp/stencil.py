@@ -118,6 +118,36 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
     return exits[cells[best]][1] if math.isfinite(totals[best]) else None
 
 
+class RobotMoves:
+    """The moves a planner may offer the robot on a changing map: the stencil's legal moves from its cell, and the
+    way out when an obstacle covers it (:func:`escape_move`), never through the map's own walls - the cells occupied
+    in the map the planner was given and never freed since (a box that stood somewhere at the start and drove off
+    is no wall). Values at or above ``d_max`` (a layer's cap, cells) count as unreachable."""
+
+    def __init__(self, occupied: np.ndarray, neighbourhood: int, corner_cutting: bool, d_max: float):
+        self.walls = np.array(occupied, bool)
+        self.allowed = moves(neighbourhood, corner_cutting)
+        self.d_max = d_max
+
+    def freed(self, cells: np.ndarray, occupied: np.ndarray) -> None:
+        """A map update: ``cells`` (n, 2) whose new state is ``occupied`` (bool per cell); freed cells are no walls."""
+        self.walls[cells[~occupied, 0], cells[~occupied, 1]] = False
+
+    def legal(self, occupied: np.ndarray, cell: tuple[int, int]) -> list[tuple[tuple[int, int], float]]:
+        """(neighbour, length) of every stencil move from ``cell`` into a free cell, crossing only free cells."""
+        return list(legal_moves(occupied, cell, self.allowed))
+
+    def escape(self, occupied: np.ndarray, cell: tuple[int, int],
+               values_at: Callable[[list], np.ndarray]) -> tuple[int, int] | None:
+        """The first move out of the obstacle that covers ``cell`` towards the target of the layer whose values
+        at given cells ``values_at`` reads (:func:`escape_move`); None when no way out reaches a finite value."""
+        def distances(cells: list) -> np.ndarray:
+            values = np.asarray(values_at(cells), np.float64)
+            return np.where(values >= self.d_max, np.inf, values)
+
+        return escape_move(occupied, cell, self.allowed, distances, walls=self.walls)
+
+
 def _moves_clear_of(blocked: np.ndarray, here: tuple[int, int], allowed: tuple[Move, ...]):
     """(cell, move) of each of ``allowed`` moves from ``here`` that stays on the map and enters or crosses no cell
     of the bool map ``blocked`` (the cells a move crosses lie between its ends, so on the map too)."""

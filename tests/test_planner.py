@@ -9,7 +9,8 @@ from hypothesis import strategies as st
 
 import tdp
 from tdp.blockage import BlockageMonitor, segment_near_path
-from tdp.nodes import NodeGraph, choose_subgoal, place_nodes
+from tdp.contract import Mode
+from tdp.nodes import NodeGraph, place_nodes
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 from tdp.stencil import escape_move
@@ -81,8 +82,8 @@ def test_accelerating_nodes_beat_plain_dp_after_a_sudden_blockage_at_k1(episodes
 def test_sudden_blockage_turns_early_and_switches_back(episodes):
     episode = episodes[("sudden-blockage", 4, True)]
     assert episode.turn_point is not None and episode.switch_back_point is not None
-    assert "backup" in episode.modes
-    assert episode.modes[-1] == "dp"
+    assert Mode.BACKUP in episode.modes
+    assert episode.modes[-1] is Mode.DP
 
 
 def test_clearing_takes_the_opened_passage(episodes):
@@ -120,29 +121,6 @@ def test_switch_back_after_path_cost_iterations_with_the_papers_rule():
         robot = result.next_cell or robot
         navigator.move_robot(robot)
     pytest.fail("never switched back")
-
-
-def graph_from(robot_readings, goal_readings, pairs, robot_goal=np.inf, dmax_q=10.0):
-    n = len(robot_readings)
-    samples = np.full((n + 2, n + 1), np.inf, np.float32)
-    samples[:n, 1:] = pairs
-    samples[n, 1:], samples[n + 1, 1:] = robot_readings, goal_readings
-    samples[n, 0] = robot_goal
-    return NodeGraph(samples, dmax_q, np.ones(n, bool))
-
-
-def test_subgoal_is_q2_or_q1_when_q2_is_out_of_sight_or_the_last_point():
-    pairs = np.array([[0, 4, 10], [4, 0, 4], [10, 4, 0]], float)  # DmaxQ = 10
-    graph = graph_from([3, 6, 10], [10, 10, 2], pairs)
-    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 1      # Q2, within sight (6 < 10)
-    graph = graph_from([3, 12, 10], [10, 10, 2], pairs)
-    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 0      # Q2 out of sight: Q1
-    assert choose_subgoal([3, 2, 4], graph) == 2            # R, Q1, G with G out of sight: Q1
-    assert choose_subgoal([3, 4], graph) == 4               # R, G: the last point
-    near_goal = graph_from([3, 12, 10], [10, 10, 2], pairs, robot_goal=7.0)
-    assert choose_subgoal([3, 2, 4], near_goal) == 4        # R, Q1, G with G in sight: G
-    graph = graph_from([0, 6, 8], [10, 10, 2], pairs)
-    assert choose_subgoal([3, 0, 1, 2, 4], graph) == 2      # standing on Q1: skip it
 
 
 def test_monitor_flags_a_rise_of_u_but_not_a_small_change():
@@ -292,7 +270,7 @@ def test_no_route_in_the_node_graph_follows_the_goal_layer_instead_of_waiting():
     config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=4, placement="drop", switch_back="paper")
     episode = tdp.simulate(scenario, config)
     assert episode.reached and episode.collisions == 0
-    assert "wait" not in episode.modes
+    assert Mode.WAIT not in episode.modes
     assert any(d["relevant"] for d in episode.detections)
 
 
@@ -300,7 +278,7 @@ def test_evidence_leaves_the_backup_once_the_goal_layer_knows_a_route_at_least_a
     scenario = tdp.scenarios.get("sudden-blockage")
     paper = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", switch_back="paper"))
     evidence = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", switch_back="evidence"))
-    assert 0 < evidence.modes.count("backup") < paper.modes.count("backup")
+    assert 0 < evidence.modes.count(Mode.BACKUP) < paper.modes.count(Mode.BACKUP)
     assert evidence.ratio <= paper.ratio + 0.005
 
 
@@ -312,8 +290,8 @@ def test_leaving_a_backup_by_evidence_takes_a_settled_route_to_the_goal(seed):
     the rise arrived cost 9 cells (ratio 1.09 against plain DP's 1.065)."""
     scenario = make_world("rooms", 100, seed)
     episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", updates_per_move=4))
-    assert episode.reached and "backup" in episode.modes
-    left = len(episode.modes) - episode.modes[::-1].index("backup")
+    assert episode.reached and Mode.BACKUP in episode.modes
+    left = len(episode.modes) - episode.modes[::-1].index(Mode.BACKUP)
     cell = episode.trajectory[left]
     driven = np.hypot(*np.diff(np.array(episode.trajectory[left:]), axis=0).T).sum()
     assert driven == pytest.approx(distances_to(scenario.occupancy(left), scenario.goal)[cell], abs=0.01)
@@ -328,7 +306,7 @@ def test_a_route_lengthened_by_boxes_far_ahead_starts_no_backup():
     config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1)
     accelerating = tdp.simulate(scenario, config)
     plain = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=1, planner="plain-dp"))
-    assert accelerating.detections and "backup" not in accelerating.modes
+    assert accelerating.detections and Mode.BACKUP not in accelerating.modes
     assert accelerating.ratio <= plain.ratio + 0.005
 
 
@@ -485,7 +463,7 @@ def test_unreachable_goal_makes_the_robot_wait_then_go_when_it_opens():
     free_grid = tdp.GridMap(np.zeros((12, 12), bool))
     scenario = tdp.Scenario(free_grid, (0, 0), (11, 11), obstacles=[door], name="door")
     episode = tdp.simulate(scenario, tdp.NavigatorConfig(planner="accelerating", nodes=4), max_ticks=60)
-    assert episode.modes[:10] == ["wait"] * 10
+    assert episode.modes[:10] == [Mode.WAIT] * 10
     assert episode.reached and episode.collisions == 0
     assert grid.shape == (12, 12)
 

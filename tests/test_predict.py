@@ -148,7 +148,7 @@ def test_the_goal_layer_never_sees_a_prediction():
             feed.update(navigator, scenario.occupancy(tick), scenario.goal)
             navigator.tick()
         np.testing.assert_array_equal(plain.engine.goal_distances(), predicting.engine.goal_distances())
-    assert len(predicting.predictor.tracks) > 0
+    assert len(predicting.lookout.predictor.tracks) > 0
 
 
 def test_avoiding_boxes_keeps_the_robot_out_of_their_way():

@@ -5,7 +5,7 @@ import time
 
 from ..contract import Mode, timing_summary
 from ..dstar_lite import DStarLite
-from ..navigator import NavigatorConfig
+from ..config import NavigatorConfig
 from ..planners import make_planner
 from ..simulate import oracle, run_planner, start_grid
 from .spec import Episode, config_planner, metric_function

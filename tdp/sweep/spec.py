@@ -46,8 +46,8 @@ from pathlib import Path
 import yaml
 
 from .. import checks
-from ..navigator import PLANNERS as NAVIGATOR_PLANNERS
-from ..navigator import NavigatorConfig
+from ..config import PLANNERS as NAVIGATOR_PLANNERS
+from ..config import NavigatorConfig
 
 PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
 #: NavigatorConfig fields that only accelerating nodes read.

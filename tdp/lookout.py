@@ -1,0 +1,99 @@
+"""Obstacle prediction for the DP planners (ARCHITECTURE §5.7): moving boxes tracked from the map's updates, the
+cells they are about to sweep over held occupied in the node layers, and the robot kept out of their way."""
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+
+from .config import NavigatorConfig
+from .engine import Engine
+from .predict import MotionPredictor
+
+Cell = tuple[int, int]
+
+
+class BoxLookout:
+    """Tracks moving boxes for a :class:`tdp.Navigator` with ``predict_ticks`` or ``avoid_boxes``.
+
+    ``predicted`` is the (H, W) mask of cells the node layers hold occupied on prediction alone (updated in place).
+    Each map update goes through :meth:`note_update` before the engine takes it and :meth:`hold` after; each tick
+    starts with :meth:`predict`; :meth:`clear_move` vets the robot's move.
+    """
+
+    def __init__(self, engine: Engine, config: NavigatorConfig):
+        self.engine = engine
+        self.config = config
+        self.predictor = MotionPredictor(engine.occupied.shape)
+        self.ticks = 0
+        self.predicted = np.zeros(engine.occupied.shape, bool)
+        self._became_occupied: list[np.ndarray] = []
+        self._predicted_cells = np.zeros((0, 2), np.int64)
+
+    def note_update(self, cells: np.ndarray, occupied: np.ndarray) -> None:
+        """Before the engine takes a map update: remember the cells (n, 2) that become occupied."""
+        was = self.engine.occupied[cells[:, 0], cells[:, 1]]
+        self._became_occupied.append(cells[occupied & ~was])
+
+    def hold(self, cells: np.ndarray) -> None:
+        """After the engine took a map update of ``cells``: the node layers keep the predicted ones occupied."""
+        self.engine.set_node_cells(cells[self.predicted[cells[:, 0], cells[:, 1]]], True)
+
+    def predict(self) -> bool:
+        """A new tick: feed the tracker the cells that became occupied since the last, and hold the cells the boxes
+        are predicted to sweep over in the next ``predict_ticks`` ticks occupied in the node layers. Returns whether
+        the node layers changed."""
+        self.ticks += 1
+        became = np.vstack(self._became_occupied) if self._became_occupied else np.zeros((0, 2), np.int64)
+        self._became_occupied = []
+        self.predictor.observe(self.ticks, became)
+        cells = self.predictor.entering(self.ticks, self.config.predict_ticks)
+        occupied = self.engine.occupied
+        cells = cells[~occupied[cells[:, 0], cells[:, 1]]]
+        old = self._predicted_cells
+        already = self.predicted[cells[:, 0], cells[:, 1]]
+        self.predicted[old[:, 0], old[:, 1]] = False
+        self.predicted[cells[:, 0], cells[:, 1]] = True
+        freed = old[~self.predicted[old[:, 0], old[:, 1]] & ~occupied[old[:, 0], old[:, 1]]]
+        self.engine.set_node_cells(freed, False)
+        self.engine.set_node_cells(cells[~already], True)
+        self._predicted_cells = cells
+        return bool(len(freed) or not already.all())
+
+    def clear_move(self, robot: Cell, wanted: Cell | None, route: Callable[[int], list[Cell]],
+                   options: list[tuple[Cell, float]], values: Callable[[list[Cell]], np.ndarray]) -> Cell | None:
+        """The move to make given the cells the tracked boxes are predicted to enter: ``wanted`` if the robot meets
+        no box on its next ``meet_ticks`` moves (:meth:`_meets_a_box`; ``route(k)``: the robot's next k cells);
+        else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of
+        ``options`` (the legal moves: cell, length) that no box enters at the next tick - one that none enters within
+        ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus the move's
+        length among them; ``wanted`` when every move is entered at the next tick."""
+        arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks)
+        if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
+            return wanted
+        if arrivals.get(robot, math.inf) > 1:
+            return None
+        options = [(cell, cost) for cell, cost in options if arrivals.get(cell, math.inf) > 1]
+        if not options:
+            return wanted
+        layer = values([cell for cell, _ in options])
+        clear = [arrivals.get(cell, math.inf) > self.config.avoid_ticks for cell, _ in options]
+        best = max(range(len(options)), key=lambda i: (clear[i], -(layer[i] + options[i][1])))
+        return options[best][0]
+
+    def _meets_a_box(self, robot: Cell, wanted: Cell, arrivals: dict[Cell, int],
+                     route: Callable[[int], list[Cell]]) -> bool:
+        """Whether a box is predicted to enter ``wanted`` at the next tick, or a box moving across the robot's way
+        to enter one of its next ``meet_ticks`` cells (``wanted``, then the followed layer's successors) no later
+        than the robot would get there, a move per tick. The next cell alone let the robot escort a box that drove
+        across its way: it stepped along the box's front, one cell per yield, for as long as the box drove. A box
+        moving along the robot's way is left to the next-cell test: waiting for it does not clear the way."""
+        if arrivals.get(wanted, math.inf) <= 1:
+            return True
+        ahead = route(self.config.meet_ticks)
+        if not ahead or ahead[0] != wanted:
+            return False
+        heading = np.subtract(ahead[-1], robot)
+        across = self.predictor.arrivals(self.ticks, self.config.meet_ticks, across=heading)
+        return any(across.get(cell, math.inf) <= moves_there for moves_there, cell in enumerate(ahead, start=1))
