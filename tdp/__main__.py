@@ -4,7 +4,7 @@
     python -m tdp run --scenario NAME | --world FILE [options] --out DIR   an episode: metrics.json and a figure
     python -m tdp plan MAP --start R C --goal R C [--out DIR]  shortest path on a map file
     python -m tdp sweep SPEC.yaml [--out DIR] [--serial | --scheduler ADDRESS | --workers N]
-                                                         many episodes: tables and a figure (README "Sweeps")
+                                                         many episodes: tables and a figure (docs/sweeps.md)
 """
 from __future__ import annotations
 
@@ -151,7 +151,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--out", default="out", help="folder for the figure (default: out)")
     p.set_defaults(run=plan)
     s = commands.add_parser("sweep", help="run a sweep spec: many episodes, tables and a figure")
-    s.add_argument("spec", help="a sweep spec (YAML: see the README's 'Sweeps')")
+    s.add_argument("spec", help="a sweep spec (YAML: see docs/sweeps.md)")
     s.add_argument("--out", default=None, help="output folder (default: sweep-NAME); a rerun skips what it holds")
     where = s.add_mutually_exclusive_group()
     where.add_argument("--serial", action="store_true", help="run the episodes one after another in this process")

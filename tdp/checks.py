@@ -11,6 +11,9 @@ import numbers
 
 import numpy as np
 
+#: A grid cell: (row, col).
+Cell = tuple[int, int]
+
 
 def integer(value, name: str, low: int | None = None) -> int:
     """``value`` as an int if it is an integer (numpy integers included, bools not) >= ``low``."""

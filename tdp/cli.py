@@ -30,7 +30,7 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     blockage on the route with ``--blockage``)."""
     which = parser.add_mutually_exclusive_group(required=True)
     which.add_argument("--scenario", help="a named scenario (list them with the list command)")
-    which.add_argument("--world", help="a world file (YAML: see the README's 'Your own world')")
+    which.add_argument("--world", help="a world file (YAML: see docs/worlds.md)")
     which.add_argument("--map", help="a map file for a quick world (needs --start and --goal)")
     quick = parser.add_argument_group("quick world on --map")
     quick.add_argument("--start", nargs=2, type=int, metavar=("ROW", "COL"))

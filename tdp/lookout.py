@@ -7,11 +7,11 @@ from typing import Callable
 
 import numpy as np
 
+from .checks import Cell
 from .config import NavigatorConfig
 from .engine import Engine
 from .predict import MotionPredictor
 
-Cell = tuple[int, int]
 
 
 class BoxLookout:

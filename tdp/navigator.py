@@ -17,6 +17,7 @@ from . import checks
 from .backup import (BackupState, Follow, Step, after_search, cells_near, cost_from_robot, goal_route_wins, iterated,
                      next_step, plan_backup, switched_back, without_route)
 from .blockage import polyline_cells, segment_near_path
+from .checks import Cell
 from .config import NavigatorConfig
 from .contract import Detection, Mode, PhaseClock, TickResult
 from .engine import Engine
@@ -27,7 +28,6 @@ from .nodes import Vertices, place_nodes
 from .readings import NodeReadings
 from .stencil import RobotMoves
 
-Cell = tuple[int, int]
 
 
 class Navigator:
@@ -228,9 +228,6 @@ class Navigator:
         """The goal layer's successors from R if they are a real route to G (:meth:`NodeReadings.real_chain`)."""
         return self.readings.real_chain(self.robot, self.vertices.goal, max_steps, self.robot, self.goal)
 
-    def _cell_of(self, vertex: int) -> Cell:
-        return self.vertices.cell(vertex, self.robot, self.goal)
-
     def _classify(self, new_pairs: list[tuple[int, tuple[int, int]]]) -> list[Detection]:
         """Mark each newly blocked pair relevant if its segment passes within s cells of the route the robot
         follows (:meth:`_followed_route`)."""
@@ -249,7 +246,8 @@ class Navigator:
         if self.backup.follow is Follow.BACKUP:
             cells += self.route(max(1, int(4 * self.dmax_q)))
             path = self.backup.route.path
-            cells += polyline_cells([self._cell_of(v) for v in path[path.index(self.backup.subgoal):]])
+            legs = path[path.index(self.backup.subgoal):]
+            cells += polyline_cells([self.vertices.cell(v, self.robot, self.goal) for v in legs])
         return np.array(cells)
 
     def _followed_values(self, cells: list[Cell]) -> np.ndarray:
@@ -281,8 +279,7 @@ class Navigator:
         return 0 if subgoal is None else self.vertices.layer(subgoal)
 
     def _successor(self) -> Cell | None:
-        step = self.route(1)
-        return step[0] if step else None
+        return next(iter(self.route(1)), None)
 
 
 def _check(grid: GridMap, config: NavigatorConfig) -> None:

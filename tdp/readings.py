@@ -7,10 +7,10 @@ import math
 import numpy as np
 
 from .blockage import BlockageMonitor
+from .checks import Cell
 from .engine import Engine
 from .nodes import NodeGraph, Vertices, pair_distances
 
-Cell = tuple[int, int]
 
 
 class NodeReadings:

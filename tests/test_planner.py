@@ -476,7 +476,8 @@ def test_episode_animation_frames(tmp_path):
     from tdp.animate import MAX_FRAMES, save_episode_animation
 
     scenario = tdp.scenarios.get("static")
-    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(planner=planner)) for planner in ("accelerating", "plain-dp")]
+    episodes = [tdp.simulate(scenario, tdp.NavigatorConfig(planner=planner))
+                for planner in ("accelerating", "plain-dp")]
     written = save_episode_animation(scenario, episodes, tmp_path / "static.gif")
     assert written[0] == tmp_path / "static.gif"
     ticks = max(e.ticks for e in episodes)

@@ -8,10 +8,10 @@ distributed, each result journalled as it arrives, then tidy tables and a figure
 The command line does the same: ``python -m tdp sweep study.yaml --out out``. See :mod:`tdp.sweep.spec` for the
 spec's format.
 """
-from .episode import TIMED, run_episode
+from .episode import TIMED, measure_episode
 from .report import write_report
 from .run import JOURNAL, Journal, run_sweep
-from .spec import Episode, Spec, World, load_spec
+from .spec import EpisodeSpec, Spec, World, load_spec
 
-__all__ = ["Episode", "JOURNAL", "Journal", "Spec", "TIMED", "World", "load_spec", "run_episode", "run_sweep",
+__all__ = ["EpisodeSpec", "JOURNAL", "Journal", "Spec", "TIMED", "World", "load_spec", "measure_episode", "run_sweep",
            "write_report"]

@@ -8,14 +8,14 @@ from ..dstar_lite import DStarLite
 from ..config import NavigatorConfig
 from ..planners import make_planner
 from ..simulate import oracle, run_planner, start_grid
-from .spec import Episode, config_planner, metric_function
+from .spec import EpisodeSpec, config_planner, metric_function
 
 #: The row's metrics that are measured times: they vary from run to run; every other value of a row is
 #: deterministic (unless the config sets budget_ms, which trades iterations for time).
 TIMED = ("setup_s", "ms_median", "ms_mean", "ms_p95", "ms_max")
 
 
-def run_episode(episode: Episode) -> dict:
+def measure_episode(episode: EpisodeSpec) -> dict:
     """Run ``episode``; return its row: key, the world's coordinates, the planner, its ``config`` (a dict), the
     metrics (lengths in cells, times in seconds for setup and in milliseconds per tick) and any extra metrics."""
     scenario = episode.world.build()

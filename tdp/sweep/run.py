@@ -12,8 +12,8 @@ import time
 from pathlib import Path
 from typing import Iterable, TextIO
 
-from .episode import run_episode
-from .spec import Episode, Spec
+from .episode import measure_episode
+from .spec import EpisodeSpec, Spec
 
 JOURNAL = "episodes.jsonl"
 
@@ -51,7 +51,7 @@ class Journal:
         else:
             self.errors[entry["key"]] = entry["error"]
 
-    def rows_of(self, episodes: list[Episode]) -> list[dict]:
+    def rows_of(self, episodes: list[EpisodeSpec]) -> list[dict]:
         """The rows of those of ``episodes`` that are done, in their order."""
         return [self.rows[e.key] for e in episodes if e.key in self.rows]
 
@@ -94,7 +94,7 @@ class Progress:
         if done:
             print(f"sweep: {done} of {total} episodes done before, skipped", file=log, flush=True)
 
-    def __call__(self, episode: Episode, error: str | None) -> None:
+    def __call__(self, episode: EpisodeSpec, error: str | None) -> None:
         self.finished += 1
         self.failed += error is not None
         now = time.perf_counter()
@@ -136,16 +136,16 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int 
     return journal.rows_of(episodes)
 
 
-def _serially(episodes: list[Episode]) -> Iterable[tuple[Episode, dict | None, str | None]]:
+def _serially(episodes: list[EpisodeSpec]) -> Iterable[tuple[EpisodeSpec, dict | None, str | None]]:
     for episode in episodes:
         try:
-            yield episode, run_episode(episode), None
+            yield episode, measure_episode(episode), None
         except Exception as error:  # one bad episode must not end a sweep of thousands; it is recorded
             yield episode, None, f"{type(error).__name__}: {error}"
 
 
-def _on_dask(episodes: list[Episode], scheduler: str | None,
-             workers: int | None) -> Iterable[tuple[Episode, dict | None, str | None]]:
+def _on_dask(episodes: list[EpisodeSpec], scheduler: str | None,
+             workers: int | None) -> Iterable[tuple[EpisodeSpec, dict | None, str | None]]:
     try:
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
@@ -159,7 +159,7 @@ def _on_dask(episodes: list[Episode], scheduler: str | None,
                                silence_logs=logging.ERROR, env={"TDP_THREADS": str(max(1, cores // count))})
     try:
         with Client(cluster or scheduler) as client:
-            futures = client.map(run_episode, episodes, key=[f"tdp-episode-{e.key}" for e in episodes])
+            futures = client.map(measure_episode, episodes, key=[f"tdp-episode-{e.key}" for e in episodes])
             of = dict(zip((f.key for f in futures), episodes))
             for future in as_completed(futures):
                 if future.status == "error":

@@ -46,10 +46,10 @@ from pathlib import Path
 import yaml
 
 from .. import checks
-from ..config import PLANNERS as NAVIGATOR_PLANNERS
-from ..config import NavigatorConfig
+from ..config import PLANNERS, NavigatorConfig
 
-PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
+#: What a sweep's planners entry may name: the planners of a config, D* Lite and the oracle.
+SWEEP_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
 #: NavigatorConfig fields that only accelerating nodes read.
 NODE_FIELDS = ("nodes", "spacing", "vision", "detect_window", "detect_rise", "placement", "switch_back")
 #: The fields every planner reads: the moves allowed.
@@ -88,7 +88,7 @@ class World:
 
 
 @dataclass(frozen=True)
-class Episode:
+class EpisodeSpec:
     """One run: a planner with one configuration on one world. ``config`` holds every NavigatorConfig field the
     planner reads (all of them for accelerating nodes and plain DP, the stencil for D* Lite and the oracle);
     ``metrics`` names the extra metric functions."""
@@ -116,16 +116,16 @@ class Spec:
     columns: tuple[str, ...]
     metrics: tuple[str, ...]
 
-    def episodes(self) -> list[Episode]:
+    def episodes(self) -> list[EpisodeSpec]:
         """Every episode, world by world in the spec's order: the oracle once per stencil, then each run; repeats
         (the same planner and configuration from two entries) once."""
         stencils = list(dict.fromkeys(tuple(config[f] for f in STENCIL_FIELDS) for _, config, _ in self.runs))
         oracles = [("oracle", dict(zip(STENCIL_FIELDS, stencil)), None) for stencil in stencils]
-        out: dict[str, Episode] = {}
+        out: dict[str, EpisodeSpec] = {}
         for world in self.worlds:
             for planner, config, max_size in oracles + [run for run in self.runs if run[0] != "oracle"]:
                 if max_size is None or world.coords["size"] <= max_size:
-                    episode = Episode(world, planner, config, self.metrics)
+                    episode = EpisodeSpec(world, planner, config, self.metrics)
                     out.setdefault(episode.key, episode)
         return list(out.values())
 
@@ -275,8 +275,8 @@ def _cell(value, where: str) -> tuple:
 def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | None]], list[str]]:
     """The (planner, full config, max_size) of one ``planners`` entry (the product of its listed values) and the
     fields it names."""
-    if not isinstance(entry, dict) or entry.get("planner") not in PLANNERS:
-        raise ValueError(f"{where}: a mapping whose 'planner' is one of {', '.join(PLANNERS)}")
+    if not isinstance(entry, dict) or entry.get("planner") not in SWEEP_PLANNERS:
+        raise ValueError(f"{where}: a mapping whose 'planner' is one of {', '.join(SWEEP_PLANNERS)}")
     planner = entry["planner"]
     allowed = {"accelerating": CONFIG_FIELDS, "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS),
                "exact": EXACT_FIELDS}.get(planner, STENCIL_FIELDS)
@@ -301,7 +301,7 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
 def config_planner(kind: str) -> str:
     """The NavigatorConfig ``planner`` of a sweep's planner name: the name itself for the planners a config names,
     "exact" for the oracle (the exact planner, unbudgeted) and D* Lite (which reads only the stencil)."""
-    return kind if kind in NAVIGATOR_PLANNERS else "exact"
+    return kind if kind in PLANNERS else "exact"
 
 
 def metric_function(name: str):
