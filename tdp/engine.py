@@ -13,23 +13,15 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   cells]``, pen 0 free and inf blocked. The goal layer's is float32; a node window's is one int32 word per cell, a
   bit per lane (1 blocked), so that the penalties of 32 lanes take the memory of one (``crossing``).
 
-Kernels come from a factory (``_kernels_for``), one set per compile-time spec - lanes (0 for the goal layer, LANES
-for node windows), neighbourhood, corner rule - closed over as constants; each kind of layer (``_Layers``) knows its
-kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the kernels'
-parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer. Each kind
-of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous iteration). Which
-kernel runs when (``_Layers._waves`` alone decides serial or parallel):
-
-| work | kernel | launch |
-|---|---|---|
-| k iterations, sampled after each | ``iterate_serially`` | one launch, calling thread, while <= SERIAL_TILES active |
-| k iterations of an idle kind | none: a kept ``sample`` (``_Layers.iterate``) | nothing to relax |
-| one busy iteration | ``iterate`` | parallel over tiles, a launch per iteration (always on a GPU) |
-| converge: rounds lifting, then lowering tiles | ``settle_serially`` / ``settle`` | same (goal: SERIAL_SETTLE_TILES) |
-| converge: equal buffers | none: ``copy_from`` before the next busy iteration, if any | lazily |
-| initial state, penalties | ``seed``, ``gather_penalties`` | construction, ``reset`` |
-| map edits (tiles stamped in the same launch), goal moves | ``paint``, ``stamp_cells`` (serial) | each edit |
-| reads | ``sample``, ``trace`` | on demand, serial |
+Kernels come from ``_kernels_for``, one set per compile-time spec - lanes (0 for the goal layer, LANES for node
+windows), neighbourhood, corner rule - closed over as constants, built from small rule factories (``_lane_rules``,
+``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``, ``_search_rules``) by one kernel factory per
+phase: iterate, settle, search, set up, edit, read. A launch's several parameters travel as a named tuple
+(``_SettleRun`` ...). Each kind of layer (``_LayerArrays``: arrays, edits, reads; ``_Layers``: the work on them)
+knows its kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the
+kernels' parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer.
+Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous
+iteration). Which kernel runs when, and on how many threads (``_Layers._waves`` alone decides): ARCHITECTURE §7.
 
 Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
 Taichi reads their source.
@@ -43,6 +35,8 @@ import math
 import os
 import time
 import weakref
+from types import SimpleNamespace
+from typing import NamedTuple
 
 os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout belongs to its user: no banner
 
@@ -131,6 +125,90 @@ IDLE_ENTRIES = 8
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
 REBASE_AT = 1 << 29
 
+# Launch parameters and results of the kernels that take several: named tuples on the host, int32 vectors in Taichi
+# (a struct argument cost 5 µs more a launch, measured on the 2-core VM); kernels index them by the slots below.
+class _StepRun(NamedTuple):
+    """``iterate``'s launch: the iteration's number and the sample row it writes."""
+
+    tick: int
+    step: int
+
+
+class _IterateRun(NamedTuple):
+    """``iterate_serially``'s launch: the first iteration's number, the sample row of the first, how many
+    iterations at most, the most active tiles to go on with, the latest iteration the host stamped tiles for."""
+
+    tick: int
+    first: int
+    steps: int
+    limit: int
+    woken: int
+
+
+class _SettleRun(NamedTuple):
+    """``settle_serially``'s launch: the first round's number, how many rounds at most, the most active tiles to go on
+    with, the focus (padded layer coordinates; row -1: none), the sweeps allowed (0: any number), whether round
+    ``tick``'s work list is kept (1) or must be listed first (0)."""
+
+    tick: int
+    rounds: int
+    limit: int
+    focus_row: int
+    focus_col: int
+    sweeps: int
+    listed: int
+
+
+class _SettleResult(NamedTuple):
+    """What ``settle_serially`` hands back: the rounds done, whether it settled, stopped at the focus, the sweeps
+    made, whether the allowance stopped it, the index of the focus's successor move (-1: none)."""
+
+    rounds: int
+    settled: int
+    focused: int
+    swept: int
+    cut: int
+    move: int
+
+
+class _SearchRun(NamedTuple):
+    """``search``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
+    stamped for, and whether to search (0: a launch that only compiles)."""
+
+    focus_row: int
+    focus_col: int
+    tick: int
+    go: int
+
+
+class _SearchResult(NamedTuple):
+    """What ``search`` hands back: the buckets emptied, and the cells still listed (a focused search's frontier)."""
+
+    buckets: int
+    frontier: int
+
+
+class _PaintRun(NamedTuple):
+    """``paint``'s launch: the iteration or round the woken tiles are stamped for, whether the work lists are kept."""
+
+    tick: int
+    listed: int
+
+
+def _vector(launch: type) -> VectorType:
+    """The kernel parameter type of a launch's named tuple: an int32 vector, an entry per field."""
+    return ti.types.vector(len(launch._fields), ti.i32)
+
+
+def _slots(launch: type):
+    """``launch`` with each field holding its index, for kernels to read ``run[_SETTLE.tick]``."""
+    return launch(*range(len(launch._fields)))
+
+
+_STEP, _ITERATE, _SETTLE, _SETTLED_BY = _slots(_StepRun), _slots(_IterateRun), _slots(_SettleRun), _slots(_SettleResult)
+_SEARCH, _SEARCHED, _PAINT = _slots(_SearchRun), _slots(_SearchResult), _slots(_PaintRun)
+
+
 _initialised = False
 _on_cpu = True
 
@@ -172,9 +250,10 @@ def _serial_limit(tiles: int) -> int:
 
 
 # ------------------------------------------------------------------------------------- kernels, one set per spec
-def _cell_rules(lanes: int, moves: tuple) -> dict:
-    """The per-cell ti.funcs of a layer kind with ``lanes`` packed layers (0: scalar) and the stencil ``moves``,
-    closed over as compile-time constants."""
+def _lane_rules(lanes: int) -> SimpleNamespace:
+    """How a cell holds the layers of a kind with ``lanes`` packed layers (0: scalar): its values' lanes and its
+    penalties (a float, or a bit per lane), as ti.funcs closed over ``lanes``; ``width`` lanes per cell (1 for a
+    scalar layer), a sample's ``first_column`` for the kind and its settling ``band``."""
     width = max(lanes, 1)
 
     @ti.func
@@ -218,9 +297,9 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
 
     @ti.func
     def blocked(penalty):
-        """1 for a scalar layer's blocked cell: it holds the cap, so relaxing it is skipped. Packed layers relax
-        every cell: reducing 32 lanes costs more than the few all-blocked cells it would skip (dense 1024², 256
-        nodes: 29-31 against 34-37 ms)."""
+        """1 for a scalar layer's blocked cell (it holds the cap: relaxing it is skipped). Packed layers relax every
+        cell: reducing 32 lanes costs more than the all-blocked cells skipped (dense 1024², 256 nodes: 29-31 ms
+        against 34-37)."""
         out = 0
         if ti.static(lanes == 0):
             out = ti.i32(penalty > 0)
@@ -241,32 +320,6 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
             return lanes_in(pen[g, i, j]) != 0
 
     @ti.func
-    def crossing(cand, pen: ti.template(), g, i, j, crossed: ti.template()):
-        """``cand`` with the penalties of the ``crossed`` cells (offsets from (i, j)) of a move: + inf where crossing
-        is blocked. A packed layer ORs the cells' words and blocks the lanes of the result, without a branch (skipping
-        the select where the word is 0 made the warehouse navigator's setup() 10-30 % slower: mispredictions)."""
-        out = cand
-        if ti.static(lanes == 0):
-            for c in ti.static(crossed):
-                out += pen[g, i + c[0], j + c[1]]
-        else:
-            word = 0
-            for c in ti.static(crossed):
-                word |= pen[g, i + c[0], j + c[1]]
-            out = ti.select(lanes_in(word) != 0, broadcast(ti.math.inf), cand)
-        return out
-
-    @ti.func
-    def penalty(pen: ti.template(), g, i, j, lane):
-        """The penalty of cell (i, j) for layer ``lane``: 0 free, inf blocked."""
-        out = 0.0
-        if ti.static(lanes == 0):
-            out = pen[g, i, j]
-        else:
-            out = ti.select((pen[g, i, j] >> lane) & 1, ti.math.inf, 0.0)
-        return out
-
-    @ti.func
     def store_penalty(pen: ti.template(), g, i, j, lane, value):
         """Set the penalty of cell (i, j) for layer ``lane`` to ``value`` (0 free, inf blocked): a packed layer sets
         or clears the lane's bit."""
@@ -284,6 +337,45 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
             arr[g, i, j] = value
         else:
             arr[g, i, j][lane] = value
+
+    return SimpleNamespace(broadcast=broadcast, component=component, differs=differs, lowest=lowest, blocked=blocked,
+                           lanes_in=lanes_in, blocked_lanes=blocked_lanes, store_penalty=store_penalty,
+                           store=store, width=width, first_column=0 if lanes == 0 else 1,
+                           band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
+
+
+def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
+    """The per-cell ti.funcs of a layer kind with ``lanes`` packed layers (0: scalar) and the stencil ``moves``,
+    closed over as compile-time constants: :func:`_lane_rules` and a cell's relaxation, successor and window."""
+    lane = _lane_rules(lanes)
+    broadcast, component, lanes_in, blocked_lanes = lane.broadcast, lane.component, lane.lanes_in, lane.blocked_lanes
+    width = lane.width
+
+    @ti.func
+    def penalty(pen: ti.template(), g, i, j, lane):
+        """The penalty of cell (i, j) for layer ``lane``: 0 free, inf blocked."""
+        out = 0.0
+        if ti.static(lanes == 0):
+            out = pen[g, i, j]
+        else:
+            out = ti.select((pen[g, i, j] >> lane) & 1, ti.math.inf, 0.0)
+        return out
+
+    @ti.func
+    def crossing(cand, pen: ti.template(), g, i, j, crossed: ti.template()):
+        """``cand`` with the penalties of the ``crossed`` cells (offsets from (i, j)) of a move: + inf where crossing
+        is blocked. A packed layer ORs the cells' words and blocks the lanes of the result, without a branch (skipping
+        the select where the word is 0 made the warehouse navigator's setup() 10-30 % slower: mispredictions)."""
+        out = cand
+        if ti.static(lanes == 0):
+            for c in ti.static(crossed):
+                out += pen[g, i + c[0], j + c[1]]
+        else:
+            word = 0
+            for c in ti.static(crossed):
+                word |= pen[g, i + c[0], j + c[1]]
+            out = ti.select(lanes_in(word) != 0, broadcast(ti.math.inf), cand)
+        return out
 
     @ti.func
     def updated(src: ti.template(), pen: ti.template(), header: ti.template(), cap, g, i, j):
@@ -322,10 +414,8 @@ def _cell_rules(lanes: int, moves: tuple) -> dict:
         layer = g * width + lane
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
-    return dict(broadcast=broadcast, component=component, differs=differs, lowest=lowest, blocked=blocked, store=store,
-                store_penalty=store_penalty, blocked_lanes=blocked_lanes, updated=updated, crossing=crossing,
-                moves=moves, successor_move=successor_move, window_cell=window_cell, width=width,
-                first_column=0 if lanes == 0 else 1, band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
+    return SimpleNamespace(**vars(lane), crossing=crossing, updated=updated, successor_move=successor_move,
+                           window_cell=window_cell, moves=moves)
 
 
 def _given(argument) -> bool:
@@ -413,16 +503,16 @@ def _wake_around(stamps: ti.template(), keys: ti.template(), queue: ti.template(
 
 
 @ti.func
-def _stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, run, kind, key):
-    """Activate for iteration or round run[0] the tiles of group g that have its layer cell (a, b) within
-    reach (a layer sees a cell up to PAD outside it), adding them to its work list if run[1] says the lists
+def _stamp_near(stamps: ti.template(), keys: ti.template(), queue: ti.template(), g, a, b, tick, listing, kind, key):
+    """Activate for iteration or round ``tick`` the tiles of group g that have its layer cell (a, b) within
+    reach (a layer sees a cell up to PAD outside it), adding them to its work list if ``listing`` says the lists
     are kept (``_stamp``), and, with ``keys`` (None: iterating only), lower their key of ``kind`` (_LOWER or
     _LIFT) to ``key``."""
     for da in ti.static(range(-PAD, PAD + 1, PAD)):
         for db in ti.static(range(-PAD, PAD + 1, PAD)):
             ta, tb = (a + da) // TILE, (b + db) // TILE
             if 0 <= ta < stamps.shape[1] and 0 <= tb < stamps.shape[2]:
-                _stamp(stamps, queue, g, ta, tb, run[0], run[1])
+                _stamp(stamps, queue, g, ta, tb, tick, listing)
                 if ti.static(_given(keys)):
                     keys[g, ta, tb, kind] = ti.min(keys[g, ta, tb, kind], key)
 
@@ -514,14 +604,11 @@ def _sweep(header: ti.template(), rows, cols, tick):
     return tick + down + right
 
 
-def _tile_rules(cell: dict) -> dict:
-    """The per-tile ti.funcs built on a layer kind's cell rules: Jacobi relaxation, in-place settling, sampling.
-    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``keys``, ``queue``, ``header``
-    (its fields: CHANGED ... SWEEP_ALLOWANCE)."""
-    updated, differs, lowest, broadcast = cell["updated"], cell["differs"], cell["lowest"], cell["broadcast"]
-    blocked = cell["blocked"]
-    component, window_cell, width = cell["component"], cell["window_cell"], cell["width"]
-    first_column = cell["first_column"]
+def _relax_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """The per-tile ti.funcs of synchronous (Jacobi) iterations built on a layer kind's cell rules, and sampling.
+    A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``header`` (CHANGED ... SCANNED)."""
+    updated, differs, blocked = cell.updated, cell.differs, cell.blocked
+    component, window_cell, width, first_column = cell.component, cell.window_cell, cell.width, cell.first_column
 
     @ti.func
     def relax_tile(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
@@ -562,6 +649,31 @@ def _tile_rules(cell: dict) -> dict:
                 relax_tile(src, dst, pen, stamps, header, cap, g, ta, tb, tick)
 
     @ti.func
+    def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
+                    step):
+        """out[step, k, column] = each layer of ``values`` at cells[k]: column 0 for the goal layer (scalar),
+        1 + node for a node layer (its cap outside its window)."""
+        rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
+        ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
+        for k, g in ti.ndrange(cells.shape[0], values.shape[0]):
+            for lane in range(width):
+                column = g * width + lane + first_column
+                if column < out.shape[2]:
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    value = cap
+                    if 0 <= a < rows and 0 <= b < cols:
+                        value = component(values[g, a + PAD, b + PAD], lane)
+                    out[step, k, column] = value
+
+    return SimpleNamespace(relax_all=relax_all, sample_into=sample_into)
+
+
+def _sweep_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """The ti.funcs that settle one tile in place (``sweep_tile``) and key its lowering once lifted
+    (``lowering_key``), built on a layer kind's cell rules."""
+    updated, differs, lowest, broadcast, blocked = cell.updated, cell.differs, cell.lowest, cell.broadcast, cell.blocked
+
+    @ti.func
     def lowering_key(values: ti.template(), header: ti.template(), cap, g, ta, tb):
         """The lowering key of tile (g, ta, tb) once it is lifted: 0 if it holds the source (a node freed in the same
         edits as an obstacle elsewhere holds the cap, and so may all around it), else the smallest value below the
@@ -581,15 +693,60 @@ def _tile_rules(cell: dict) -> dict:
         return key
 
     @ti.func
+    def sweep_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
+                   header: ti.template(), queue: ti.template(), cap, g, ta, tb, tick, sweep, lifting):
+        """Sweep the cells of tile (g, ta, tb) in place until they stop changing (in cache, at most 4 TILE passes),
+        each pass in the next of the four diagonal directions from ``sweep`` (``_oriented``): lifting (a lane whose
+        relaxation is above its value jumps to the cap) or lowering (a cell takes its relaxation), waking the tiles
+        that its changed border cells reach (``_wake_around``) with the lifted lanes' old values as lifting keys or
+        the new value as lowering key. Returns (passes made, whether the last pass changed anything)."""
+        rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
+        passes, changed_here = 0, 1
+        while changed_here and passes < 4 * TILE:
+            changed_here = 0
+            for k in range(TILE * TILE):
+                u = _oriented(k // TILE, TILE, sweep + passes, 1)
+                v = _oriented(k % TILE, TILE, sweep + passes, 2)
+                r, c = ta * TILE + u, tb * TILE + v
+                if r < rows and c < cols and not blocked(pen[g, r + PAD, c + PAD]):
+                    old = values[g, r + PAD, c + PAD]
+                    due = 1
+                    if lifting:  # a cell at the cap has nothing left to lift (a reduction only here)
+                        due = ti.select(lowest(old) < cap, 1, 0)
+                    if due:
+                        new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
+                        lifted = old  # the lifted lanes' old values (the cap elsewhere), when lifting
+                        if lifting:
+                            rising = new > old
+                            new = ti.select(rising, broadcast(cap), old)
+                            lifted = ti.select(rising, old, broadcast(cap))
+                        if differs(new, old):
+                            values[g, r + PAD, c + PAD] = new
+                            changed_here = 1
+                            if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
+                                _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
+                                             ti.select(lifting, _LIFT, _LOWER),
+                                             ti.select(lifting, lowest(lifted), lowest(new)))
+            passes += 1
+        return passes, changed_here
+
+    return SimpleNamespace(lowering_key=lowering_key, sweep_tile=sweep_tile)
+
+
+def _settle_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """The ti.funcs of converge()'s rounds of tiles settled in place, in the order of their keys (delta-stepping's
+    buckets), the raise wave of a repair before the lowering one: ``settle_tile`` and ``settle_all``."""
+    tile = _sweep_rules(cell)
+    lowering_key, sweep_tile = tile.lowering_key, tile.sweep_tile
+
+    @ti.func
     def settle_tile(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
                     header: ti.template(), queue: ti.template(), cap, g, ta, tb, tick, sweep, bound, lift_round):
         """Asynchronous relaxation in place of tile (g, ta, tb), if active (stamp >= ``tick``) and due (its
         priority at most ``bound``, or its lowering key unknown: due at once); an active tile not yet due is deferred
-        to the next round. A due tile sweeps its cells until they stop changing (in cache), each pass in the next of
-        the four diagonal directions starting from the round's, ``sweep`` (``_oriented``), and wakes the
-        neighbouring tiles that its changed border cells reach (``_wake_around``). Returns 1 if the tile changed or
-        waits. Tiles stamped for the next round join its work list (``queue``, serial settling only; None in a
-        parallel round).
+        to the next round. A due tile is swept until it stops changing (``sweep_tile``). Returns 1 if the tile
+        changed or waits. Tiles stamped for the next round join its work list (``queue``, serial settling only;
+        None in a parallel round).
 
         A tile with a lifting key is lifted (the raise wave of a repair): a lane whose relaxation is above its value
         (it lost the move it was the minimum of, and holds too little) jumps to the cap, waking the neighbours with
@@ -614,39 +771,13 @@ def _tile_rules(cell: dict) -> dict:
                 _stamp(stamps, queue, g, ta, tb, tick + 1, 1)
                 pending = 1
             else:
-                rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
                 lifting = keys[g, ta, tb, _LIFT] < ti.math.inf
-                passes, changed_here = 0, 1
                 if lifting:  # wakes from here on key it again; earlier ones are taken in now
                     keys[g, ta, tb, _LIFT] = ti.math.inf
                 else:
                     keys[g, ta, tb, _LOWER] = _SETTLED
-                while changed_here and passes < 4 * TILE:
-                    changed_here = 0
-                    for k in range(TILE * TILE):
-                        u = _oriented(k // TILE, TILE, sweep + passes, 1)
-                        v = _oriented(k % TILE, TILE, sweep + passes, 2)
-                        r, c = ta * TILE + u, tb * TILE + v
-                        if r < rows and c < cols and not blocked(pen[g, r + PAD, c + PAD]):
-                            old = values[g, r + PAD, c + PAD]
-                            due = 1
-                            if lifting:  # a cell at the cap has nothing left to lift (a reduction only here)
-                                due = ti.select(lowest(old) < cap, 1, 0)
-                            if due:
-                                new = updated(values, pen, header, cap, g, r + PAD, c + PAD)
-                                lifted = old  # the lifted lanes' old values (the cap elsewhere), when lifting
-                                if lifting:
-                                    rising = new > old
-                                    new = ti.select(rising, broadcast(cap), old)
-                                    lifted = ti.select(rising, old, broadcast(cap))
-                                if differs(new, old):
-                                    values[g, r + PAD, c + PAD] = new
-                                    changed_here = 1
-                                    if u < PAD or u >= TILE - PAD or v < PAD or v >= TILE - PAD:
-                                        _wake_around(stamps, keys, queue, g, ta, tb, u, v, tick + 1,
-                                                     ti.select(lifting, _LIFT, _LOWER),
-                                                     ti.select(lifting, lowest(lifted), lowest(new)))
-                    passes += 1
+                passes, changed_here = sweep_tile(values, pen, stamps, keys, header, queue, cap, g, ta, tb, tick, sweep,
+                                                 lifting)
                 if ti.static(_given(queue)):  # the unit of a launch's allowance: a tile's sweeps cost 1-32 passes
                     header[SWEPT] += passes
                 if passes > 1:
@@ -669,11 +800,10 @@ def _tile_rules(cell: dict) -> dict:
                    header: ti.template(), queue: ti.template(), cap, tick, bound, lift_round):
         """One round of ``settle_tile`` over the tiles due: in a lifting round (``lift_round``) those with a lifting
         priority below ``bound``, else those with a priority at most ``bound``. With a ``queue`` (None: a parallel
-        loop over every tile, at a kernel's top level) the round runs on the calling thread over its work list, or,
-        when that holds over a quarter of the tiles, over every tile in the round's diagonal direction
-        (``_oriented``, as fast sweeping); it builds the next round's list as it goes; once the launch's allowance of
-        sweeps is spent (``_spent``) the round stops, open (header[ROUND_CURSOR]: the entry the next launch goes
-        on from). Returns the number of tiles that changed or wait (0: settled)."""
+        loop over every tile, at a kernel's top level) the round runs on the calling thread over its work list (over
+        every tile in the round's diagonal direction when the list holds over a quarter of them) and builds the next
+        round's; once the launch's allowance of sweeps is spent (``_spent``) the round stops, open
+        (header[ROUND_CURSOR]: the entry the next launch goes on from). Returns the tiles that changed or wait."""
         pending = 0
         tiles_a, tiles_b = stamps.shape[1], stamps.shape[2]
         sweep = _sweep(header, values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD, tick)
@@ -702,38 +832,14 @@ def _tile_rules(cell: dict) -> dict:
                                        lift_round)
         return pending
 
-    @ti.func
-    def sample_into(values: ti.template(), origins: ti.template(), cells: ti.template(), out: ti.template(), cap,
-                    step):
-        """out[step, k, column] = each layer of ``values`` at cells[k]: column 0 for the goal layer (scalar),
-        1 + node for a node layer (its cap outside its window)."""
-        rows, cols = values.shape[1] - 2 * PAD, values.shape[2] - 2 * PAD
-        ti.loop_config(serialize=True)  # a few hundred reads: cheaper than waking the threads
-        for k, g in ti.ndrange(cells.shape[0], values.shape[0]):
-            for lane in range(width):
-                column = g * width + lane + first_column
-                if column < out.shape[2]:
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    value = cap
-                    if 0 <= a < rows and 0 <= b < cols:
-                        value = component(values[g, a + PAD, b + PAD], lane)
-                    out[step, k, column] = value
-
-    return dict(relax_all=relax_all, settle_all=settle_all, sample_into=sample_into, lowering_key=lowering_key)
+    return SimpleNamespace(settle_all=settle_all)
 
 
-def _search_rules(cell: dict) -> dict:
-    """The search from the initial state of a scalar layer: Dial's label-setting algorithm (Dijkstra's with buckets
-    one cell wide), cell by cell on the calling thread, with A*'s order and stop when focused. Its fixed point is the
-    one eqs. 5 and 10 define, bit for bit: a cell takes the smallest value + move length over its free neighbours,
-    in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
-    emptied depend on none of its cells (unfocused: each cell is taken once, with its final value).
-
-    ``links`` (2, padded cells + SEARCH_BUCKETS) int32: row 0 each listed cell's next cell in its bucket, and in its
-    last SEARCH_BUCKETS entries each bucket's first; row 1 the previous cell, ``_UNLISTED`` for a cell in no bucket,
-    -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
-    blocked, crossing = cell["blocked"], cell["crossing"]
-    moves = cell["moves"]
+def _bucket_rules() -> SimpleNamespace:
+    """The search's buckets (``_search_rules``): doubly linked lists of cells threaded through ``links`` (2, padded
+    cells + SEARCH_BUCKETS) int32: row 0 each listed cell's next cell in its bucket, and in its last SEARCH_BUCKETS
+    entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED`` for a cell in
+    no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -755,6 +861,20 @@ def _search_rules(cell: dict) -> dict:
         if first >= 0:
             links[1, first] = c
         links[0, heads + slot] = c
+
+    return SimpleNamespace(unlink=unlink, link=link)
+
+
+def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """The search from the initial state of a scalar layer: Dial's label-setting algorithm (Dijkstra's with buckets
+    one cell wide), cell by cell on the calling thread, with A*'s order and stop when focused. Its fixed point is the
+    one eqs. 5 and 10 define, bit for bit: a cell takes the smallest value + move length over its free neighbours,
+    in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
+    emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
+    ``_bucket_rules``."""
+    blocked, crossing, moves = cell.blocked, cell.crossing, cell.moves
+    buckets = _bucket_rules()
+    unlink, link = buckets.unlink, buckets.link
 
     @ti.func
     def priority(value, i, j, focus_row, focus_col):
@@ -824,292 +944,332 @@ def _search_rules(cell: dict) -> dict:
                 c = links[0, heads + slot]
                 unlink(links, heads, c)
                 i, j = c // width, c % width
-                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, (tick, 0), _LOWER, values[0, i, j])
+                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
-    return dict(search=search, hand_over=hand_over)
+    return SimpleNamespace(search=search, hand_over=hand_over)
+
+
+class _KernelTypes:
+    """The ndarray types of a layer kind's kernel parameters, ``lanes`` packed layers per cell (0: scalar): the
+    layer's ``values`` (``src``, ``dst``), ``penalties`` (float32, or a bit per lane in an int32), an int32 ``ints``
+    (``header``, results), ``cells`` (n, 2) int32 (``cells``, ``origins``), ``stamps``, ``keys``, ``samples``
+    (steps, cells, 1 + nodes) float32 and the serial settling's work lists ``queue``."""
+
+    def __init__(self, lanes: int):
+        self.values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)
+        self.penalties = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.i32, ndim=3)
+        self.ints = ti.types.ndarray(dtype=ti.i32, ndim=1)
+        self.cells = ti.types.ndarray(dtype=ti.i32, ndim=2)
+        self.stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)
+        self.keys = ti.types.ndarray(dtype=ti.f32, ndim=4)
+        self.samples = ti.types.ndarray(dtype=ti.f32, ndim=3)
+        self.queue = ti.types.ndarray(dtype=ti.i32, ndim=2)
+
+
+def _iterate_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Iterating: ``iterate`` (one parallel iteration) and ``iterate_serially`` (several on the calling thread)."""
+    relax = _relax_rules(cell)
+    relax_all, sample_into = relax.relax_all, relax.sample_into
+
+    @kernel
+    def iterate(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, header: t.ints, origins: t.cells,
+                cells: t.cells, out: t.samples, cap: ti.f32, run: _vector(_StepRun)):
+        """One iteration src -> dst of the active tiles (``run``: a _StepRun), shared out among the threads; then
+        the layers sampled at ``cells`` into out[step]."""
+        relax_all(src, dst, pen, stamps, header, cap, run[_STEP.tick], False)
+        sample_into(dst, origins, cells, out, cap, run[_STEP.step])
+
+    @kernel
+    def iterate_serially(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, header: t.ints,
+                         origins: t.cells, cells: t.cells, out: t.samples, cap: ti.f32,
+                         run: _vector(_IterateRun)) -> ti.i32:
+        """Up to ``steps`` iterations on the calling thread (``run``: an _IterateRun), each
+        sampled into out[first + step], for as long as at most ``limit`` tiles are active. ``src`` and ``dst``
+        swap roles at each iteration. Returns the iterations done.
+
+        An iteration is idle, and skipped, when the previous one changed nothing (header[CHANGED] == 0) and the
+        host has stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier):
+        then no tile is active and both buffers hold the same values."""
+        tick, first, steps = run[_ITERATE.tick], run[_ITERATE.first], run[_ITERATE.steps]
+        limit, woken = run[_ITERATE.limit], run[_ITERATE.woken]
+        done = 0
+        while done < steps:
+            busy = header[CHANGED] > 0 or woken >= tick + done
+            if busy:
+                if _active_tiles(stamps, tick + done) > limit:
+                    break
+            if done % 2 == 0:
+                if busy:
+                    relax_all(src, dst, pen, stamps, header, cap, tick + done, True)
+                sample_into(dst, origins, cells, out, cap, first + done)
+            else:
+                if busy:
+                    relax_all(dst, src, pen, stamps, header, cap, tick + done, True)
+                sample_into(src, origins, cells, out, cap, first + done)
+            done += 1
+        return done
+
+
+def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Settling, converge()'s rounds of tiles: ``settle`` (one parallel round) and ``settle_serially`` (rounds on
+    the calling thread, with a focus and an allowance of sweeps)."""
+    settle_all, band, lowest = _settle_rules(cell).settle_all, cell.band, cell.lowest
+    successor_move = cell.successor_move
+
+    @kernel
+    def settle(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, cap: ti.f32,
+               tick: ti.i32) -> ti.i32:
+        """One round ``tick`` of in-place settling, the tiles shared out among the threads; returns the number of
+        tiles that changed or wait."""
+        lowest, lifting = ti.math.inf, ti.math.inf  # the lowest priority and lifting priority among the active
+        for g, a, b in stamps:
+            if stamps[g, a, b] >= tick:
+                ti.atomic_min(lowest, _priority(keys, header, g, a, b))
+                ti.atomic_min(lifting, _lifting_priority(keys, header, g, a, b))
+        lift_round = lifting < _SETTLED  # (a reduction's inf comes back as the largest float)
+        return settle_all(values, pen, stamps, keys, header, None, cap, tick,
+                          ti.select(lift_round, ti.math.inf, lowest + band), lift_round)
+
+    @kernel
+    def settle_serially(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
+                        queue: t.queue, cap: ti.f32, run: _vector(_SettleRun), result: t.ints):
+        """converge()'s rounds on the calling thread (``run``: a _SettleRun): up to ``rounds`` rounds and ``sweeps``
+        sweeps of tiles (0: any number; a round whose sweeps
+        are spent stays open, and the next launch goes on with it; scans count against them: ``_spent``) until
+        settled, until more than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1:
+        none) - until no pending tile can change the focus's value or successors: every active tile's lowering
+        key known, and the lowest priority at least the focus's value (a pending cell can only fall to its
+        lowering key + 1 or more, a cell below its relaxation holds more than its lifting key, and a way from the
+        focus through either is at least its distance longer: ARCHITECTURE §6.1). Each round works through a
+        list of its active tiles (``queue``, built as the round before stamps them, and kept between launches by
+        ``paint``: ``listed`` 1; 0 lists the active tiles first), so a small repair on a large map does not pass
+        over every tile. ``result``: a _SettleResult."""
+        tick, rounds, limit = run[_SETTLE.tick], run[_SETTLE.rounds], run[_SETTLE.limit]
+        focus_row, focus_col = run[_SETTLE.focus_row], run[_SETTLE.focus_col]
+        header[FOCUS_ROW], header[FOCUS_COL] = focus_row, focus_col
+        header[SWEPT], header[SWEEP_ALLOWANCE], header[SCANNED] = 0, run[_SETTLE.sweeps], 0
+        done, settled, focused, cut = 0, 0, 0, 0
+        if not run[_SETTLE.listed]:
+            _list_active(stamps, queue, tick)
+            header[ROUND_CURSOR] = 0
+        while done < rounds and settled == 0:
+            if _spent(header):
+                cut = 1
+                break
+            if header[ROUND_CURSOR] == 0:  # a new round: its bound, or the focus reached
+                scan = _round_scan(stamps, keys, header, queue, tick + done)
+                header[SCANNED] += ti.i32(scan[0])
+                if scan[0] > limit:
+                    break
+                aim = ti.math.inf  # the focus's value: no pending tile with a priority at least this changes it
+                if focus_row >= 0:
+                    aim = lowest(values[0, focus_row, focus_col])
+                lift_round = scan[3] < aim
+                if not lift_round and scan[0] > 0 and focus_row >= 0 and scan[2] == 0 and scan[1] >= aim:
+                    focused = 1
+                    break
+                header[ROUND_BOUND] = ti.bit_cast(ti.select(lift_round, aim, scan[1] + band), ti.i32)
+                header[ROUND_LIFTS] = ti.select(lift_round, 1, 0)
+            settle_all(values, pen, stamps, keys, header, queue, cap, tick + done,
+                       ti.bit_cast(header[ROUND_BOUND], ti.f32), header[ROUND_LIFTS])
+            if header[ROUND_CURSOR] > 0:
+                cut = 1
+                break
+            done += 1
+            if queue[(tick + done) % 2, queue.shape[1] - 1] == 0:  # no tile active for the next round
+                settled = 1
+        result[_SETTLED_BY.rounds], result[_SETTLED_BY.settled], result[_SETTLED_BY.focused] = done, settled, focused
+        result[_SETTLED_BY.swept], result[_SETTLED_BY.cut], result[_SETTLED_BY.move] = header[SWEPT], cut, -1
+        inside = PAD <= focus_row < values.shape[1] - PAD and PAD <= focus_col < values.shape[2] - PAD
+        if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
+            result[_SETTLED_BY.move] = successor_move(values, pen, header, cap, 0, 0, focus_row, focus_col)
+
+
+def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Searching from the initial state (a scalar layer's only): ``search``."""
+    rules = _search_rules(cell)
+    bucket_search, hand_over = rules.search, rules.hand_over
+
+    @kernel
+    def search(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
+               cap: ti.f32, run: _vector(_SearchRun), result: t.ints):
+        """converge() from the initial state, on the calling thread (``_search_rules``; ``run``: a _SearchRun), the
+        tiles then handed over to settling for round ``tick``; ``result``: a _SearchResult."""
+        ti.loop_config(serialize=True)
+        for _ in range(run[_SEARCH.go]):
+            found = bucket_search(values, pen, header, links, cap, run[_SEARCH.focus_row], run[_SEARCH.focus_col])
+            hand_over(values, stamps, keys, links, run[_SEARCH.tick])
+            result[_SEARCHED.buckets], result[_SEARCHED.frontier] = found[0], found[1]
+
+
+def _setup_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """The initial state: ``seed`` (the source and the tiles around it) and ``gather_penalties``."""
+    broadcast, blocked_lanes, store_penalty, width = cell.broadcast, cell.blocked_lanes, cell.store_penalty, cell.width
+
+    @kernel
+    def seed(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, header: t.ints, tick: ti.i32):
+        """After both buffers are filled with the cap and every tile deactivated: 0 at a free source (eqs. 5 and
+        10), and the tiles within the stencil's reach of it active for ``tick``."""
+        rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
+        i, j = header[SOURCE_ROW], header[SOURCE_COL]
+        ti.loop_config(serialize=True)  # a few stores per layer group: cheaper than waking the threads
+        for g in range(src.shape[0]):
+            src[g, i, j] = ti.select(blocked_lanes(pen, g, i, j), src[g, i, j], broadcast(0.0))
+            dst[g, i, j] = src[g, i, j]
+            for da in ti.static(range(-PAD, PAD + 1, PAD)):
+                for db in ti.static(range(-PAD, PAD + 1, PAD)):
+                    a = ti.min(ti.max(i - PAD + da, 0), rows - 1) // TILE
+                    b = ti.min(ti.max(j - PAD + db, 0), cols - 1) // TILE
+                    stamps[g, a, b] = tick
+
+    @kernel
+    def gather_penalties(pen: t.penalties, origins: t.cells, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
+        """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
+        blocked and in the padding): inf outside the grid and in the layer's own padding."""
+        rows, cols = grid.shape[0] - 2 * PAD, grid.shape[1] - 2 * PAD
+        side_rows, side_cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+        for g, i in ti.ndrange(pen.shape[0], pen.shape[1]):  # by rows: threads take 32 loop items at a time
+            for lane in range(width):
+                r = origins[g * width + lane, 0] + i - PAD
+                left = origins[g * width + lane, 1] - PAD
+                inside = PAD <= i < side_rows + PAD and 0 <= r < rows
+                for j in range(pen.shape[2]):
+                    value = ti.math.inf
+                    if inside and PAD <= j < side_cols + PAD and 0 <= left + j < cols:
+                        value = grid[r + PAD, left + j + PAD]
+                    store_penalty(pen, g, i, j, lane, value)
+
+
+def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Editing: ``paint`` (cells occupied or freed, the tiles around them woken with keys) and ``stamp_cells``
+    (tiles woken for iterations after a goal move)."""
+    component, store, store_penalty = cell.component, cell.store, cell.store_penalty
+    window_cell, width = cell.window_cell, cell.width
+
+    @ti.func
+    def freed_key(values: ti.template(), header: ti.template(), cap, g, a, b, lane):
+        """A bound below which no cell that layer cell (a, b), lane ``lane``, just freed opens a way to can fall
+        (less 1): the smallest value below the cap within the stencil's reach of it (a way through a freed region
+        enters it from such a cell), -1 at the source."""
+        key = ti.math.inf
+        if a + PAD == header[SOURCE_ROW] and b + PAD == header[SOURCE_COL]:
+            key = -1.0
+        for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
+            value = component(values[g, a + PAD + da, b + PAD + db], lane)
+            if value < cap:
+                key = ti.min(key, value)
+        return key
+
+    @kernel
+    def paint(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
+              queue: t.queue, origins: t.cells, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1),
+              cap: ti.f32, run: _vector(_PaintRun)):
+        """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
+        activate the tiles near them for the next iteration or round (``run``: a _PaintRun; ``_stamp_near``). A
+        newly occupied cell takes its obstacle value, the cap, at once in both buffers, and keys the lifting of the
+        cells near it that depended on it by its old value (they held more); the cells freed key their lowering by
+        ``freed_key``, the smallest over them (a way through several freed cells enters from one of their
+        neighbours)."""
+        rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+        freed = ti.math.inf
+        ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols:
+                    store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
+                    if penalties[k] > 0:
+                        old = component(src[g, a + PAD, b + PAD], lane)
+                        store(src, g, a + PAD, b + PAD, lane, cap)
+                        store(dst, g, a + PAD, b + PAD, lane, cap)
+                        _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LIFT, old)
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                    freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                    _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LOWER, freed)
+
+    @kernel
+    def stamp_cells(stamps: t.stamps, pen: t.penalties, origins: t.cells, cells: t.cells, tick: ti.i32):
+        """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
+        (see ``_stamp_near``; ``pen`` gives the layers' shape): for iterations only (a converge after a goal move
+        starts afresh)."""
+        rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+        ti.loop_config(serialize=True)  # a few cells: cheaper than waking the threads
+        for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
+                    _stamp_near(stamps, None, None, g, a, b, tick, 0, _LOWER, 0.0)
+
+
+def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Reading: ``sample`` (every layer at given cells) and ``trace`` (a layer's successors from a cell)."""
+    sample_into, successor_move = _relax_rules(cell).sample_into, cell.successor_move
+    moves, width = cell.moves, cell.width
+
+    @kernel
+    def sample(values: t.values, origins: t.cells, cells: t.cells, out: t.samples, cap: ti.f32):
+        """Every layer of this kind at ``cells`` into out[0] (see ``sample_into``)."""
+        sample_into(values, origins, cells, out, cap, 0)
+
+    @kernel
+    def trace(values: t.values, pen: t.penalties, header: t.ints, cap: ti.f32, index: ti.i32,
+              start: ti.types.vector(2, ti.i32), out: t.cells):
+        """Follow the successors of layer ``index`` of this kind from ``start`` (padded layer coordinates) for at
+        most out.shape[0] - 1 steps, into out[1:]; out[0, 0] receives the number of steps."""
+        g, lane = index // width, index % width
+        i, j, steps = start[0], start[1], 0
+        ti.loop_config(serialize=True)
+        for _ in range(out.shape[0] - 1):
+            move = -1
+            if PAD <= i < values.shape[1] - PAD and PAD <= j < values.shape[2] - PAD:
+                move = successor_move(values, pen, header, cap, g, lane, i, j)
+            if move >= 0:
+                for k, m in ti.static(enumerate(moves)):
+                    if move == k:
+                        i += m.dr
+                        j += m.dc
+                out[steps + 1, 0] = i
+                out[steps + 1, 1] = j
+                steps += 1
+            else:
+                break
+        out[0, 0] = steps
 
 
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
-    stencil's ``neighbourhood`` and corner rule - closed over as constants. The decorator that makes each kernel also
-    records it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
+    stencil's ``neighbourhood`` and corner rule - closed over as constants, made by one factory per phase (iterate,
+    settle, search, set up, edit, read) and named on this object. The decorator that makes each kernel also records
+    it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
     :func:`_kernels_for`, which caches one set per spec.
 
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
-    ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells; ``out`` samples
-    (steps, cells, 1 + nodes); ``run`` the launch's iteration numbers and limits."""
+    ``keys``, ``queue``, ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells;
+    ``out`` samples (steps, cells, 1 + nodes); ``run`` a launch's parameters (a named tuple: ``_StepRun``,
+    ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_PaintRun``) and ``result`` what it hands back."""
 
     def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool):
         init_taichi()
         self.lanes = lanes
-        moves = stencil.moves(neighbourhood, corner_cutting)
-        cell = _cell_rules(lanes, moves)
-        tile = _tile_rules(cell)
-        relax_all, settle_all, sample_into = tile["relax_all"], tile["settle_all"], tile["sample_into"]
-        lowering_key = tile["lowering_key"]
-        broadcast, store, window_cell = cell["broadcast"], cell["store"], cell["window_cell"]
-        component = cell["component"]
-        store_penalty, blocked_lanes = cell["store_penalty"], cell["blocked_lanes"]
-        successor_move, width, band, lowest = cell["successor_move"], cell["width"], cell["band"], cell["lowest"]
-        Values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)  # noqa
-        Penalties = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.i32, ndim=3)  # noqa: N806
-        Ints = ti.types.ndarray(dtype=ti.i32, ndim=1)  # noqa: N806
-        Cells = Origins = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
-        Stamps = ti.types.ndarray(dtype=ti.i32, ndim=3)  # noqa: N806
-        Keys = ti.types.ndarray(dtype=ti.f32, ndim=4)  # noqa: N806
-        Samples = ti.types.ndarray(dtype=ti.f32, ndim=3)  # noqa: N806
-        Queue = ti.types.ndarray(dtype=ti.i32, ndim=2)  # noqa: N806
+        cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting))
+        types = _KernelTypes(lanes)
         made = []
 
         def kernel(function):
-            """``ti.kernel``, and the kernel recorded in :attr:`all` (and so warmed up) and named on this object."""
+            """``ti.kernel``, and the kernel recorded in :attr:`all` (and so warmed up)."""
             made.append(ti.kernel(function))
             return made[-1]
 
-        @kernel
-        def iterate(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, origins: Origins,
-                    cells: Cells, out: Samples, cap: ti.f32, run: ti.types.vector(2, ti.i32)):
-            """One iteration src -> dst of the active tiles (run = (tick, step)), shared out among the threads; then
-            the layers sampled at ``cells`` into out[step]."""
-            relax_all(src, dst, pen, stamps, header, cap, run[0], False)
-            sample_into(dst, origins, cells, out, cap, run[1])
-
-        @kernel
-        def iterate_serially(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints,
-                             origins: Origins, cells: Cells, out: Samples, cap: ti.f32,
-                             run: ti.types.vector(5, ti.i32)) -> ti.i32:
-            """Up to ``steps`` iterations on the calling thread (run = (tick, first, steps, limit, woken)), each
-            sampled into out[first + step], for as long as at most ``limit`` tiles are active. ``src`` and ``dst``
-            swap roles at each iteration. Returns the iterations done.
-
-            An iteration is idle, and skipped, when the previous one changed nothing (header[CHANGED] == 0) and the
-            host has stamped no tile for it or later (``woken``, the latest iteration it stamped for, is earlier):
-            then no tile is active and both buffers hold the same values."""
-            tick, first, steps, limit, woken = run[0], run[1], run[2], run[3], run[4]
-            done = 0
-            while done < steps:
-                busy = header[CHANGED] > 0 or woken >= tick + done
-                if busy:
-                    if _active_tiles(stamps, tick + done) > limit:
-                        break
-                if done % 2 == 0:
-                    if busy:
-                        relax_all(src, dst, pen, stamps, header, cap, tick + done, True)
-                    sample_into(dst, origins, cells, out, cap, first + done)
-                else:
-                    if busy:
-                        relax_all(dst, src, pen, stamps, header, cap, tick + done, True)
-                    sample_into(src, origins, cells, out, cap, first + done)
-                done += 1
-            return done
-
-        @kernel
-        def settle(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, cap: ti.f32,
-                   tick: ti.i32) -> ti.i32:
-            """One round ``tick`` of in-place settling, the tiles shared out among the threads; returns the number of
-            tiles that changed or wait."""
-            lowest, lifting = ti.math.inf, ti.math.inf  # the lowest priority and lifting priority among the active
-            for g, a, b in stamps:
-                if stamps[g, a, b] >= tick:
-                    ti.atomic_min(lowest, _priority(keys, header, g, a, b))
-                    ti.atomic_min(lifting, _lifting_priority(keys, header, g, a, b))
-            lift_round = lifting < _SETTLED  # (a reduction's inf comes back as the largest float)
-            return settle_all(values, pen, stamps, keys, header, None, cap, tick,
-                              ti.select(lift_round, ti.math.inf, lowest + band), lift_round)
-
-        @kernel
-        def settle_serially(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
-                            cap: ti.f32, run: ti.types.vector(7, ti.i32), result: Ints):
-            """converge()'s rounds on the calling thread (run = (tick, rounds, limit, focus row, focus col, sweeps,
-            listed)): up to ``rounds`` rounds and ``sweeps`` sweeps of tiles (0: any number; a round whose sweeps
-            are spent stays open, and the next launch goes on with it; scans count against them: ``_spent``) until
-            settled, until more than ``limit`` tiles are active, or - with a focus (padded layer coordinates; row -1:
-            none) - until no pending tile can change the focus's value or successors: every active tile's lowering
-            key known, and the lowest priority at least the focus's value (a pending cell can only fall to its
-            lowering key + 1 or more, a cell below its relaxation holds more than its lifting key, and a way from the
-            focus through either is at least its distance longer: ARCHITECTURE §6.1). Each round works through a
-            list of its active tiles (``queue``, built as the round before stamps them, and kept between launches by
-            ``paint``: ``listed`` 1; 0 lists the active tiles first), so a small repair on a large map does not pass
-            over every tile. result = (rounds done, settled, stopped at the focus, sweeps made, stopped by
-            ``sweeps``, the index of the focus's successor move: -1 for none)."""
-            tick, rounds, limit = run[0], run[1], run[2]
-            header[FOCUS_ROW], header[FOCUS_COL] = run[3], run[4]
-            header[SWEPT], header[SWEEP_ALLOWANCE], header[SCANNED] = 0, run[5], 0
-            done, settled, focused, cut = 0, 0, 0, 0
-            if not run[6]:
-                _list_active(stamps, queue, tick)
-                header[ROUND_CURSOR] = 0
-            while done < rounds and settled == 0:
-                if _spent(header):
-                    cut = 1
-                    break
-                if header[ROUND_CURSOR] == 0:  # a new round: its bound, or the focus reached
-                    scan = _round_scan(stamps, keys, header, queue, tick + done)
-                    header[SCANNED] += ti.i32(scan[0])
-                    if scan[0] > limit:
-                        break
-                    aim = ti.math.inf  # the focus's value: no pending tile with a priority at least this changes it
-                    if run[3] >= 0:
-                        aim = lowest(values[0, run[3], run[4]])
-                    lift_round = scan[3] < aim
-                    if not lift_round and scan[0] > 0 and run[3] >= 0 and scan[2] == 0 and scan[1] >= aim:
-                        focused = 1
-                        break
-                    header[ROUND_BOUND] = ti.bit_cast(ti.select(lift_round, aim, scan[1] + band), ti.i32)
-                    header[ROUND_LIFTS] = ti.select(lift_round, 1, 0)
-                settle_all(values, pen, stamps, keys, header, queue, cap, tick + done,
-                           ti.bit_cast(header[ROUND_BOUND], ti.f32), header[ROUND_LIFTS])
-                if header[ROUND_CURSOR] > 0:
-                    cut = 1
-                    break
-                done += 1
-                if queue[(tick + done) % 2, queue.shape[1] - 1] == 0:  # no tile active for the next round
-                    settled = 1
-            result[0], result[1], result[2] = done, settled, focused
-            result[3], result[4], result[5] = header[SWEPT], cut, -1
-            inside = PAD <= run[3] < values.shape[1] - PAD and PAD <= run[4] < values.shape[2] - PAD
-            if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
-                result[5] = successor_move(values, pen, header, cap, 0, 0, run[3], run[4])
-
-        if lanes == 0:
-            searching = _search_rules(cell)
-            bucket_search, hand_over = searching["search"], searching["hand_over"]
-
-            @kernel
-            def search(values: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, links: Queue,
-                       cap: ti.f32, run: ti.types.vector(4, ti.i32), result: Ints):
-                """converge() from the initial state, on the calling thread (``_search_rules``; run = (focus row,
-                focus col, tick, 1), 0 last: nothing), the tiles then handed over to settling for round ``tick``.
-                result = (buckets emptied, frontier cells left)."""
-                ti.loop_config(serialize=True)
-                for _ in range(run[3]):
-                    found = bucket_search(values, pen, header, links, cap, run[0], run[1])
-                    hand_over(values, stamps, keys, links, run[2])
-                    result[0], result[1] = found[0], found[1]
-
-        @kernel
-        def seed(src: Values, dst: Values, pen: Penalties, stamps: Stamps, header: Ints, tick: ti.i32):
-            """After both buffers are filled with the cap and every tile deactivated: 0 at a free source (eqs. 5 and
-            10), and the tiles within the stencil's reach of it active for ``tick``."""
-            rows, cols = src.shape[1] - 2 * PAD, src.shape[2] - 2 * PAD
-            i, j = header[SOURCE_ROW], header[SOURCE_COL]
-            ti.loop_config(serialize=True)  # a few stores per layer group: cheaper than waking the threads
-            for g in range(src.shape[0]):
-                src[g, i, j] = ti.select(blocked_lanes(pen, g, i, j), src[g, i, j], broadcast(0.0))
-                dst[g, i, j] = src[g, i, j]
-                for da in ti.static(range(-PAD, PAD + 1, PAD)):
-                    for db in ti.static(range(-PAD, PAD + 1, PAD)):
-                        a = ti.min(ti.max(i - PAD + da, 0), rows - 1) // TILE
-                        b = ti.min(ti.max(j - PAD + db, 0), cols - 1) // TILE
-                        stamps[g, a, b] = tick
-
-        @kernel
-        def gather_penalties(pen: Penalties, origins: Origins, grid: ti.types.ndarray(dtype=ti.f32, ndim=2)):
-            """Fill every layer's penalties from the grid's (``grid``: (H + 2 PAD) x (W + 2 PAD), 0 free, inf
-            blocked and in the padding): inf outside the grid and in the layer's own padding."""
-            rows, cols = grid.shape[0] - 2 * PAD, grid.shape[1] - 2 * PAD
-            side_rows, side_cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-            for g, i in ti.ndrange(pen.shape[0], pen.shape[1]):  # by rows: threads take 32 loop items at a time
-                for lane in range(width):
-                    r = origins[g * width + lane, 0] + i - PAD
-                    left = origins[g * width + lane, 1] - PAD
-                    inside = PAD <= i < side_rows + PAD and 0 <= r < rows
-                    for j in range(pen.shape[2]):
-                        value = ti.math.inf
-                        if inside and PAD <= j < side_cols + PAD and 0 <= left + j < cols:
-                            value = grid[r + PAD, left + j + PAD]
-                        store_penalty(pen, g, i, j, lane, value)
-
-        @ti.func
-        def freed_key(values: ti.template(), header: ti.template(), cap, g, a, b, lane):
-            """A bound below which no cell that layer cell (a, b), lane ``lane``, just freed opens a way to can fall
-            (less 1): the smallest value below the cap within the stencil's reach of it (a way through a freed region
-            enters it from such a cell), -1 at the source."""
-            key = ti.math.inf
-            if a + PAD == header[SOURCE_ROW] and b + PAD == header[SOURCE_COL]:
-                key = -1.0
-            for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
-                value = component(values[g, a + PAD + da, b + PAD + db], lane)
-                if value < cap:
-                    key = ti.min(key, value)
-            return key
-
-        @kernel
-        def paint(src: Values, dst: Values, pen: Penalties, stamps: Stamps, keys: Keys, header: Ints, queue: Queue,
-                  origins: Origins, cells: Cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32,
-                  run: ti.types.vector(2, ti.i32)):
-            """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
-            activate the tiles near them for the next iteration or round (run = (its number, whether the work lists
-            are kept: ``_stamp_near``)). A newly occupied cell takes its obstacle value, the
-            cap, at once in both buffers, and keys the lifting of the cells near it that depended on it by its old
-            value (they held more); the cells freed key their lowering by ``freed_key``, the smallest over them (a way
-            through several freed cells enters from one of their neighbours)."""
-            rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-            freed = ti.math.inf
-            ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols:
-                        store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
-                        if penalties[k] > 0:
-                            old = component(src[g, a + PAD, b + PAD], lane)
-                            store(src, g, a + PAD, b + PAD, lane, cap)
-                            store(dst, g, a + PAD, b + PAD, lane, cap)
-                            _stamp_near(stamps, keys, queue, g, a, b, run, _LIFT, old)
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
-                        freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
-                        _stamp_near(stamps, keys, queue, g, a, b, run, _LOWER, freed)
-
-        @kernel
-        def stamp_cells(stamps: Stamps, pen: Penalties, origins: Origins, cells: Cells, tick: ti.i32):
-            """Activate for iteration ``tick`` the tiles that have one of ``cells`` (grid coordinates) within reach
-            (see ``_stamp_near``; ``pen`` gives the layers' shape): for iterations only (a converge after a goal move
-            starts afresh)."""
-            rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-            ti.loop_config(serialize=True)  # a few cells: cheaper than waking the threads
-            for k, g in ti.ndrange(cells.shape[0], stamps.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if -PAD <= a < rows + PAD and -PAD <= b < cols + PAD:
-                        _stamp_near(stamps, None, None, g, a, b, (tick, 0), _LOWER, 0.0)
-
-        @kernel
-        def sample(values: Values, origins: Origins, cells: Cells, out: Samples, cap: ti.f32):
-            """Every layer of this kind at ``cells`` into out[0] (see ``sample_into``)."""
-            sample_into(values, origins, cells, out, cap, 0)
-
-        @kernel
-        def trace(values: Values, pen: Penalties, header: Ints, cap: ti.f32, index: ti.i32,
-                  start: ti.types.vector(2, ti.i32), out: Cells):
-            """Follow the successors of layer ``index`` of this kind from ``start`` (padded layer coordinates) for at
-            most out.shape[0] - 1 steps, into out[1:]; out[0, 0] receives the number of steps."""
-            g, lane = index // width, index % width
-            i, j, steps = start[0], start[1], 0
-            ti.loop_config(serialize=True)
-            for _ in range(out.shape[0] - 1):
-                move = -1
-                if PAD <= i < values.shape[1] - PAD and PAD <= j < values.shape[2] - PAD:
-                    move = successor_move(values, pen, header, cap, g, lane, i, j)
-                if move >= 0:
-                    for k, m in ti.static(enumerate(moves)):
-                        if move == k:
-                            i += m.dr
-                            j += m.dc
-                    out[steps + 1, 0] = i
-                    out[steps + 1, 1] = j
-                    steps += 1
-                else:
-                    break
-            out[0, 0] = steps
-
+        phases = [_iterate_kernels, _settle_kernels, _setup_kernels, _edit_kernels, _read_kernels]
+        for phase in phases + ([_search_kernels] if lanes == 0 else []):
+            phase(kernel, cell, types)
         self.all = tuple(made)
         for made_kernel in made:
             setattr(self, made_kernel.__name__, made_kernel)
@@ -1140,7 +1300,7 @@ def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
 
 
 # ------------------------------------------------------------------------------------------------------- host class
-class _Layers:
+class _LayerArrays:
     """One kind of layer, self-describing: the goal's (scalar, ``lanes`` = 0) or the node windows (``lanes`` packed
     per cell). It holds its kernels, two value buffers (Jacobi: ``src`` the values, ``dst`` the next), the
     penalties ``pen``, the ``header`` (CHANGED, SOURCE_ROW, SOURCE_COL), each lane's ``origins`` (grid coordinates
@@ -1236,7 +1396,7 @@ class _Layers:
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap,
-                           run=(self.tick + int(self.round_open), int(self.listed)))  # an open round is under way
+                           run=_PaintRun(self.tick + int(self.round_open), int(self.listed)))  # an open round goes on
         self.woken = self.tick
         self._idle_sample = self.focus_move = None
 
@@ -1256,6 +1416,57 @@ class _Layers:
         self.pending = False
         self.fresh = True
         self._idle_sample = self.focus_move = None
+
+    def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
+        """Every layer of this kind at ``cells`` into out[0]."""
+        self.kernels.sample(values=self.values, origins=self.origins, cells=cells, out=out, cap=self.cap)
+
+    def trace(self, index: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
+        """Cells (grid coordinates) visited following the successors of layer ``index`` of this kind from ``start``
+        for at most ``max_steps`` moves, ``start`` left out."""
+        origin = self.grid_origins[index] - PAD  # grid coordinates of padded layer cell (0, 0)
+        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
+        self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index,
+                           start=(start[0] - origin[0], start[1] - origin[1]), out=out)
+        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
+
+    def warm_up(self) -> None:
+        """Compile every kernel of this kind (:attr:`_Kernels.all`) by launching it on a scratch layer of one cell
+        with idle arguments (:func:`_idle_argument`): nothing of this layer changes. Once per spec and process."""
+        if self.kernels.warmed:
+            return
+        scratch = _LayerArrays(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
+        for kernel in self.kernels.all:
+            kernel(**{parameter.name: _idle_argument(parameter, scratch)
+                      for parameter in inspect.signature(kernel).parameters.values()})
+        self.kernels.warmed = True
+
+    def idle(self) -> bool:
+        """Whether the next iteration has nothing to do: the last one changed nothing and the host has stamped no
+        tile since (then both buffers hold the same values, and so would every later iteration's)."""
+        return self.changed() == 0 and self.woken < self.tick
+
+    def rebase(self) -> None:
+        """Renumber iterations from 0 once they pass REBASE_AT: stamps of past iterations become -1 (inactive),
+        later ones keep their distance to the next iteration."""
+        if self.tick < REBASE_AT:
+            return
+        self.listed = False
+        stamps = self.stamps.to_numpy()
+        self.stamps.from_numpy(np.where(stamps >= self.tick, stamps - self.tick, -1).astype(np.int32))
+        self.woken = max(self.woken - self.tick, -1)
+        self.tick = 0
+
+    def _count_iterations(self, iterations: int) -> None:
+        """Account for ``iterations`` done: the buffers swap roles at each."""
+        self.current ^= iterations % 2
+        self.tick += iterations
+
+
+class _Layers(_LayerArrays):
+    """A kind of layer at work: its iterations and converges (from the initial state, a search; after edits, a
+    repair; with limits or lanes, rounds of tiles) and the launch policy that decides which kernel runs them,
+    serially or in parallel (``_waves``)."""
 
     def _waves(self, count: int, serial_tiles: int, serially, in_parallel) -> tuple[int, bool]:
         """The launch policy, decided here only (module docstring): up to ``count`` waves (iterations or settling
@@ -1297,12 +1508,12 @@ class _Layers:
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
-                                                 run=(self.tick, first, steps, limit, self.woken))
+                                                 run=_IterateRun(self.tick, first, steps, limit, self.woken))
             self._count_iterations(done)
             return done, False
 
         def in_parallel(first: int) -> bool:
-            self.kernels.iterate(**self._relaxing(), cells=cells, out=out, run=(self.tick, first))
+            self.kernels.iterate(**self._relaxing(), cells=cells, out=out, run=_StepRun(self.tick, first))
             self._count_iterations(1)
             return False
 
@@ -1346,21 +1557,22 @@ class _Layers:
         self._idle_sample, self.fresh = None, False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
-        result = np.zeros(6, np.int32)
+        result = np.zeros(len(_SettleResult._fields), np.int32)
         self.swept = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
-            self.kernels.settle_serially(**arrays, queue=self.queue, result=result,
-                                         run=(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed)))
+            run = _SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed))
+            self.kernels.settle_serially(**arrays, queue=self.queue, result=result, run=run)
+            outcome = _SettleResult(*(int(value) for value in result))
             self.listed = True
-            self.tick += int(result[0])
-            self.swept += int(result[3])
-            state["focused"], state["cut"], state["move"] = bool(result[2]), bool(result[4]), int(result[5])
+            self.tick += outcome.rounds
+            self.swept += outcome.swept
+            state["focused"], state["cut"], state["move"] = bool(outcome.focused), bool(outcome.cut), outcome.move
             self.round_open = state["cut"]
-            return int(result[0]), bool(result[1] or result[2] or result[4])
+            return outcome.rounds, bool(outcome.settled or outcome.focused or outcome.cut)
 
         def in_parallel(done: int) -> bool:
             state["move"] = None
@@ -1392,19 +1604,20 @@ class _Layers:
         if self._links is None:
             self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + SEARCH_BUCKETS))
             self._links.fill(_UNLISTED)
-        result = np.zeros(2, np.int32)
+        result = np.zeros(len(_SearchResult._fields), np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       links=self._links, cap=self.cap, result=result)
         if self.restart_s is None:  # compiled (if not yet) by a launch that does nothing, so the time is the search's
-            self.kernels.search(**arrays, run=(*_NO_FOCUS, self.tick, 0))
+            self.kernels.search(**arrays, run=_SearchRun(*_NO_FOCUS, self.tick, go=0))
         began = time.perf_counter()
-        self.kernels.search(**arrays, run=(*(focus or _NO_FOCUS), self.tick, 1))
+        self.kernels.search(**arrays, run=_SearchRun(*(focus or _NO_FOCUS), self.tick, go=1))
         self.restart_s = time.perf_counter() - began
         self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
         self.swept = 0
-        self.pending, self.woken = bool(result[1]), self.tick
+        outcome = _SearchResult(*(int(value) for value in result))
+        self.pending, self.woken = bool(outcome.frontier), self.tick
         self._idle_sample = self.focus_move = None
-        return int(result[0])
+        return outcome.buckets
 
     def _repair(self, focus: tuple[int, int] | None) -> int:
         """converge() after edits: rounds of tiles (:meth:`_settle`). Unfocused, in slices, given up for a restart
@@ -1437,51 +1650,6 @@ class _Layers:
     def _serial_tiles(self) -> int:
         """Active tiles up to which converge()'s work runs on the calling thread (before ``_serial_limit``)."""
         return SERIAL_TILES if self.lanes else SERIAL_SETTLE_TILES
-
-    def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
-        """Every layer of this kind at ``cells`` into out[0]."""
-        self.kernels.sample(values=self.values, origins=self.origins, cells=cells, out=out, cap=self.cap)
-
-    def trace(self, index: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
-        """Cells (grid coordinates) visited following the successors of layer ``index`` of this kind from ``start``
-        for at most ``max_steps`` moves, ``start`` left out."""
-        origin = self.grid_origins[index] - PAD  # grid coordinates of padded layer cell (0, 0)
-        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
-        self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index,
-                           start=(start[0] - origin[0], start[1] - origin[1]), out=out)
-        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
-
-    def warm_up(self) -> None:
-        """Compile every kernel of this kind (:attr:`_Kernels.all`) by launching it on a scratch layer of one cell
-        with idle arguments (:func:`_idle_argument`): nothing of this layer changes. Once per spec and process."""
-        if self.kernels.warmed:
-            return
-        scratch = _Layers(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
-        for kernel in self.kernels.all:
-            kernel(**{parameter.name: _idle_argument(parameter, scratch)
-                      for parameter in inspect.signature(kernel).parameters.values()})
-        self.kernels.warmed = True
-
-    def idle(self) -> bool:
-        """Whether the next iteration has nothing to do: the last one changed nothing and the host has stamped no
-        tile since (then both buffers hold the same values, and so would every later iteration's)."""
-        return self.changed() == 0 and self.woken < self.tick
-
-    def rebase(self) -> None:
-        """Renumber iterations from 0 once they pass REBASE_AT: stamps of past iterations become -1 (inactive),
-        later ones keep their distance to the next iteration."""
-        if self.tick < REBASE_AT:
-            return
-        self.listed = False
-        stamps = self.stamps.to_numpy()
-        self.stamps.from_numpy(np.where(stamps >= self.tick, stamps - self.tick, -1).astype(np.int32))
-        self.woken = max(self.woken - self.tick, -1)
-        self.tick = 0
-
-    def _count_iterations(self, iterations: int) -> None:
-        """Account for ``iterations`` done: the buffers swap roles at each."""
-        self.current ^= iterations % 2
-        self.tick += iterations
 
 
 def _cells_array(cells) -> np.ndarray:
