@@ -33,6 +33,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.predict
 	$(PY) -m benchmarks.warehouse
 	$(PY) -m benchmarks.equal_time
+	$(PY) -m benchmarks.costs
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick

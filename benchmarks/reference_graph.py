@@ -7,8 +7,10 @@ from scipy.sparse import coo_matrix
 from tdp import stencil
 
 
-def grid_graph(occupied: np.ndarray, neighbourhood: int = 16, corner_cutting: bool = False):
-    """CSR matrix with an edge V -> V + (dr, dc) of weight |move| for every move allowed by ARCHITECTURE §4."""
+def grid_graph(occupied: np.ndarray, neighbourhood: int = 16, corner_cutting: bool = False,
+               cost: np.ndarray | None = None):
+    """CSR matrix with an edge V -> V + (dr, dc) of weight |move| for every move allowed by ARCHITECTURE §4; with
+    ``cost`` (H, W), |move| x (cost[V] + cost[V + move]) / 2, in float64."""
     rows, cols = occupied.shape
     reach = stencil.REACH
     free = np.zeros((rows + 2 * reach, cols + 2 * reach), bool)
@@ -26,7 +28,8 @@ def grid_graph(occupied: np.ndarray, neighbourhood: int = 16, corner_cutting: bo
         r, c = np.nonzero(allowed)
         sources.append(index[r, c])
         targets.append(index[r + move.dr, c + move.dc])
-        weights.append(np.full(len(r), move.cost))
+        mean = 1.0 if cost is None else (cost[r, c].astype(np.float64) + cost[r + move.dr, c + move.dc]) / 2
+        weights.append(np.full(len(r), move.cost) * mean)
     n = rows * cols
     return coo_matrix((np.concatenate(weights), (np.concatenate(sources), np.concatenate(targets))),
                       shape=(n, n)).tocsr()

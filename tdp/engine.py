@@ -47,6 +47,7 @@ from taichi.lang.matrix import VectorType  # noqa: E402
 from taichi.types.ndarray_type import NdarrayType  # noqa: E402
 
 from . import stencil
+from .grid import MAX_COST  # a penalty above it is an obstacle's (inf): kernels test against it, not inf
 
 #: Node layers packed per cell: 32 float32, two AVX-512 registers (measured faster than 16 and 64 at 1024²).
 LANES = 32
@@ -95,11 +96,6 @@ SCANNED_PER_SWEEP = 64
 _NO_FOCUS = (-1, -1)
 #: Iterations handed to one launch at most (kernel arguments are 32-bit).
 _CHUNK = 1 << 20
-#: Priority buckets of the search from the initial state (``_search_rules``), a ring: a bucket holds the cells whose
-#: priority (value, plus the distance from the focus if any) has that floor (a power of 2). A move adds its length
-#: (1 to sqrt 5) to a value and at most as much to the distance, so a cell joins a bucket at most 5 past the one
-#: being emptied.
-SEARCH_BUCKETS = 8
 #: A focused search stops once the bucket it reaches is this many cells beyond the focus's value, so that the
 #: settling rounds that take over its frontier find nothing due: they key a tile by the cells within its reach and
 #: add the distance from the focus of its nearest cell, up to a tile-and-reach diagonal less than those cells' own
@@ -243,6 +239,16 @@ def sweeps_fitting(left_s: float, sweep_s: float, fewest: int, most: int) -> int
     return max(fewest, min(most, int(min(left_s / sweep_s, _NEVER))))
 
 
+def _search_buckets(max_cost: float) -> int:
+    """The buckets of the search's ring (``_search_rules``) on a layer whose free cells cost at most ``max_cost`` (1:
+    unweighted). A bucket holds the cells whose priority (value, plus the distance from the focus if any) has that
+    floor. A move of length L (1 to sqrt 5) adds at most L x ``max_cost`` to a value and L to the distance, so a cell
+    joins a bucket at most floor(1 + sqrt 5 (max_cost + 1)) past the one being emptied: the ring is the next power
+    of 2 beyond (8 unweighted)."""
+    reach = math.floor(1 + math.sqrt(5) * (max_cost + 1))
+    return 1 << reach.bit_length()
+
+
 def _serial_limit(tiles: int) -> int:
     """``tiles`` (SERIAL_TILES or SERIAL_SETTLE_TILES) on the CPU; on a GPU one thread is far slower than a launch,
     so every busy iteration is parallel there."""
@@ -250,10 +256,11 @@ def _serial_limit(tiles: int) -> int:
 
 
 # ------------------------------------------------------------------------------------- kernels, one set per spec
-def _lane_rules(lanes: int) -> SimpleNamespace:
+def _lane_rules(lanes: int, weighted: bool) -> SimpleNamespace:
     """How a cell holds the layers of a kind with ``lanes`` packed layers (0: scalar): its values' lanes and its
     penalties (a float, or a bit per lane), as ti.funcs closed over ``lanes``; ``width`` lanes per cell (1 for a
-    scalar layer), a sample's ``first_column`` for the kind and its settling ``band``."""
+    scalar layer), a sample's ``first_column`` for the kind and its settling ``band``. A scalar layer's penalty is 0
+    free and inf blocked, or, ``weighted``, the cell's traversal cost (>= 1) free and inf blocked."""
     width = max(lanes, 1)
 
     @ti.func
@@ -301,7 +308,9 @@ def _lane_rules(lanes: int) -> SimpleNamespace:
         cell: reducing 32 lanes costs more than the all-blocked cells skipped (dense 1024², 256 nodes: 29-31 ms
         against 34-37)."""
         out = 0
-        if ti.static(lanes == 0):
+        if ti.static(lanes == 0 and weighted):
+            out = ti.i32(penalty > MAX_COST)
+        elif ti.static(lanes == 0):
             out = ti.i32(penalty > 0)
         return out
 
@@ -315,14 +324,14 @@ def _lane_rules(lanes: int) -> SimpleNamespace:
         """The layers for which cell (i, j) (padded coordinates) is blocked: a bool for a scalar layer, a vector of 0/1
         for a packed one (usable as a select's condition)."""
         if ti.static(lanes == 0):
-            return pen[g, i, j] > 0
+            return blocked(pen[g, i, j]) != 0
         else:
             return lanes_in(pen[g, i, j]) != 0
 
     @ti.func
     def store_penalty(pen: ti.template(), g, i, j, lane, value):
-        """Set the penalty of cell (i, j) for layer ``lane`` to ``value`` (0 free, inf blocked): a packed layer sets
-        or clears the lane's bit."""
+        """Set the penalty of cell (i, j) for layer ``lane`` to ``value`` (inf blocked): a packed layer sets or clears
+        the lane's bit (its values: 0 free, inf blocked)."""
         if ti.static(lanes == 0):
             pen[g, i, j] = value
         else:
@@ -344,18 +353,21 @@ def _lane_rules(lanes: int) -> SimpleNamespace:
                            band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
 
 
-def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
+def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
     """The per-cell ti.funcs of a layer kind with ``lanes`` packed layers (0: scalar) and the stencil ``moves``,
-    closed over as compile-time constants: :func:`_lane_rules` and a cell's relaxation, successor and window."""
-    lane = _lane_rules(lanes)
+    closed over as compile-time constants: :func:`_lane_rules` and a cell's relaxation, successor and window. A
+    ``weighted`` (scalar) layer's move of length L from V to Z costs L x (cost[V] + cost[Z]) / 2."""
+    lane = _lane_rules(lanes, weighted)
     broadcast, component, lanes_in, blocked_lanes = lane.broadcast, lane.component, lane.lanes_in, lane.blocked_lanes
     width = lane.width
 
     @ti.func
     def penalty(pen: ti.template(), g, i, j, lane):
-        """The penalty of cell (i, j) for layer ``lane``: 0 free, inf blocked."""
+        """The penalty of cell (i, j) for layer ``lane`` as a crossed cell: 0 free, inf blocked."""
         out = 0.0
-        if ti.static(lanes == 0):
+        if ti.static(lanes == 0 and weighted):  # no select of an inf constant: fast math may take it for any value
+            out = ti.max(pen[g, i, j] - MAX_COST, 0.0)
+        elif ti.static(lanes == 0):
             out = pen[g, i, j]
         else:
             out = ti.select((pen[g, i, j] >> lane) & 1, ti.math.inf, 0.0)
@@ -369,12 +381,21 @@ def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
         out = cand
         if ti.static(lanes == 0):
             for c in ti.static(crossed):
-                out += pen[g, i + c[0], j + c[1]]
+                out += penalty(pen, g, i + c[0], j + c[1], 0)
         else:
             word = 0
             for c in ti.static(crossed):
                 word |= pen[g, i + c[0], j + c[1]]
             out = ti.select(lanes_in(word) != 0, broadcast(ti.math.inf), cand)
+        return out
+
+    @ti.func
+    def move_cost(pen: ti.template(), g, i, j, m: ti.template()):
+        """The cost of move ``m`` from (i, j): its length, or weighted, its length x the mean of the two cells'
+        costs (inf when the target is blocked)."""
+        out = ti.f32(m.cost)
+        if ti.static(weighted):
+            out = ti.f32(m.cost) * (0.5 * (pen[g, i, j] + pen[g, i + m.dr, j + m.dc]))
         return out
 
     @ti.func
@@ -384,7 +405,7 @@ def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
         (a compare and a blend more per move), and no value here is NaN (the sums are finite or +inf)."""
         best = broadcast(cap)
         for m in ti.static(moves):
-            cand = crossing(src[g, i + m.dr, j + m.dc] + ti.f32(m.cost), pen, g, i, j, m.crossed)
+            cand = crossing(src[g, i + m.dr, j + m.dc] + move_cost(pen, g, i, j, m), pen, g, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
         if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
             best = broadcast(0.0)
@@ -397,7 +418,7 @@ def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
         found = -1
         index = 0
         for m in ti.static(moves):
-            cand = component(values[g, i + m.dr, j + m.dc] + ti.f32(m.cost), lane)
+            cand = component(values[g, i + m.dr, j + m.dc] + move_cost(pen, g, i, j, m), lane)
             for c in ti.static(m.crossed):
                 cand += penalty(pen, g, i + c[0], j + c[1], lane)
             if cand < best:
@@ -414,8 +435,8 @@ def _cell_rules(lanes: int, moves: tuple) -> SimpleNamespace:
         layer = g * width + lane
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
-    return SimpleNamespace(**vars(lane), crossing=crossing, updated=updated, successor_move=successor_move,
-                           window_cell=window_cell, moves=moves)
+    return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, updated=updated,
+                           successor_move=successor_move, window_cell=window_cell, moves=moves)
 
 
 def _given(argument) -> bool:
@@ -837,9 +858,10 @@ def _settle_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
 def _bucket_rules() -> SimpleNamespace:
     """The search's buckets (``_search_rules``): doubly linked lists of cells threaded through ``links`` (2, padded
-    cells + SEARCH_BUCKETS) int32: row 0 each listed cell's next cell in its bucket, and in its last SEARCH_BUCKETS
-    entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED`` for a cell in
-    no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded layer."""
+    cells + the ring's buckets, ``_search_buckets``) int32: row 0 each listed cell's next cell in its bucket, and in
+    its last entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED``
+    for a cell in no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded
+    layer."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -872,7 +894,7 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
     in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
     ``_bucket_rules``."""
-    blocked, crossing, moves = cell.blocked, cell.crossing, cell.moves
+    blocked, crossing, moves, move_cost, penalty = cell.blocked, cell.crossing, cell.moves, cell.move_cost, cell.penalty
     buckets = _bucket_rules()
     unlink, link = buckets.unlink, buckets.link
 
@@ -891,19 +913,19 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
         """Lower ``values`` (the initial state: the cap everywhere, the source aside) bucket by bucket from the
         source; with a focus (padded coordinates; row -1: none) stop once the bucket reached is SEARCH_MARGIN past
         the focus's value. Returns (buckets emptied, cells still listed: the frontier a focused search leaves)."""
-        width = values.shape[2]
-        heads = links.shape[1] - SEARCH_BUCKETS
-        for slot in range(SEARCH_BUCKETS):
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        mask = links.shape[1] - heads - 1  # the ring's buckets, a power of 2, less 1
+        for slot in range(mask + 1):
             links[0, heads + slot] = _UNLISTED
         listed, bucket, emptied = 0, 0, 0
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if not blocked(pen[0, i, j]):
             values[0, i, j] = 0.0
             bucket = ti.i32(priority(0.0, i, j, focus_row, focus_col))
-            link(links, heads, i * width + j, bucket & (SEARCH_BUCKETS - 1))
+            link(links, heads, i * width + j, bucket & mask)
             listed = 1
         while listed > 0 and not (focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
-            slot = bucket & (SEARCH_BUCKETS - 1)
+            slot = bucket & mask
             while links[0, heads + slot] >= 0:
                 c = links[0, heads + slot]
                 unlink(links, heads, c)
@@ -912,7 +934,8 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 value = values[0, i, j]
                 for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
                     u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
-                    cand = crossing(value + ti.f32(m.cost), pen, 0, u, v, m.crossed) + pen[0, u, v]
+                    cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
+                    cand += penalty(pen, 0, u, v, 0)
                     if cand < values[0, u, v]:
                         values[0, u, v] = cand
                         there = u * width + v
@@ -921,7 +944,7 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                         else:
                             unlink(links, heads, there)
                         due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
-                        link(links, heads, there, due & (SEARCH_BUCKETS - 1))
+                        link(links, heads, there, due & mask)
             bucket += 1
             emptied += 1
         return ti.Vector([emptied, listed])
@@ -937,9 +960,8 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 for b in range(stamps.shape[2]):
                     stamps[g, a, b] = -1
                     keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
-        width = values.shape[2]
-        heads = links.shape[1] - SEARCH_BUCKETS
-        for slot in range(SEARCH_BUCKETS):
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        for slot in range(links.shape[1] - heads):
             while links[0, heads + slot] >= 0:
                 c = links[0, heads + slot]
                 unlink(links, heads, c)
@@ -1164,12 +1186,12 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     def paint(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
               queue: t.queue, origins: t.cells, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1),
               cap: ti.f32, run: _vector(_PaintRun)):
-        """Write changed cells' ``penalties`` (0 free, inf occupied) into every layer that contains them, and
-        activate the tiles near them for the next iteration or round (``run``: a _PaintRun; ``_stamp_near``). A
-        newly occupied cell takes its obstacle value, the cap, at once in both buffers, and keys the lifting of the
-        cells near it that depended on it by its old value (they held more); the cells freed key their lowering by
-        ``freed_key``, the smallest over them (a way through several freed cells enters from one of their
-        neighbours)."""
+        """Write changed cells' ``penalties`` (inf occupied; free 0, or a weighted layer's cost) into every layer
+        that contains them, and activate the tiles near them for the next iteration or round (``run``: a _PaintRun;
+        ``_stamp_near``). A newly occupied cell takes its obstacle value, the cap, at once in both buffers, and
+        keys the lifting of the cells near it that depended on it by its old value (they held more); the cells freed
+        key their lowering by ``freed_key``, the smallest over them (a way through several freed cells enters from
+        one of their neighbours)."""
         rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
         freed = ti.math.inf
         ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
@@ -1178,7 +1200,7 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 a, b = window_cell(origins, cells, k, g, lane)
                 if 0 <= a < rows and 0 <= b < cols:
                     store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
-                    if penalties[k] > 0:
+                    if penalties[k] > MAX_COST:
                         old = component(src[g, a + PAD, b + PAD], lane)
                         store(src, g, a + PAD, b + PAD, lane, cap)
                         store(dst, g, a + PAD, b + PAD, lane, cap)
@@ -1186,12 +1208,12 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
             for lane in range(width):
                 a, b = window_cell(origins, cells, k, g, lane)
-                if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
                     freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
         for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
             for lane in range(width):
                 a, b = window_cell(origins, cells, k, g, lane)
-                if 0 <= a < rows and 0 <= b < cols and penalties[k] == 0:
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
                     _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LOWER, freed)
 
     @kernel
@@ -1245,7 +1267,8 @@ def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
-    stencil's ``neighbourhood`` and corner rule - closed over as constants, made by one factory per phase (iterate,
+    stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs - closed over as
+    constants, made by one factory per phase (iterate,
     settle, search, set up, edit, read) and named on this object. The decorator that makes each kernel also records
     it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
     :func:`_kernels_for`, which caches one set per spec.
@@ -1255,10 +1278,10 @@ class _Kernels:
     ``out`` samples (steps, cells, 1 + nodes); ``run`` a launch's parameters (a named tuple: ``_StepRun``,
     ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_PaintRun``) and ``result`` what it hands back."""
 
-    def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool):
+    def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool):
         init_taichi()
         self.lanes = lanes
-        cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting))
+        cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting), weighted)
         types = _KernelTypes(lanes)
         made = []
 
@@ -1277,9 +1300,9 @@ class _Kernels:
 
 
 @functools.lru_cache(maxsize=None)
-def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool) -> _Kernels:
+def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool = False) -> _Kernels:
     """The kernels of one compile-time spec, built once per process (Taichi compiles each on its first launch)."""
-    return _Kernels(lanes, neighbourhood, corner_cutting)
+    return _Kernels(lanes, neighbourhood, corner_cutting, weighted)
 
 
 def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
@@ -1309,9 +1332,10 @@ class _LayerArrays:
     names the kernels' parameters use."""
 
     def __init__(self, kernels: _Kernels, groups: int, side: tuple[int, int], origins: np.ndarray,
-                 source: tuple[int, int], cap: float):
+                 source: tuple[int, int], cap: float, max_cost: float = 1.0):
         self.kernels = kernels
         self.lanes, (self.rows, self.cols), self.cap = kernels.lanes, side, float(cap)
+        self.ring = _search_buckets(max_cost)  # the search's buckets
         shape = (groups, self.rows + 2 * PAD, self.cols + 2 * PAD)
         self.buffers = [self._array(shape), self._array(shape)]
         self.pen = ti.ndarray(ti.i32 if self.lanes else ti.f32, shape)  # packed: a bit per lane (1 blocked)
@@ -1602,7 +1626,7 @@ class _Layers(_LayerArrays):
         a tile again each time the front comes back to it (a maze's corridors). A focused search hands its frontier
         over to the settling rounds of later converges (:attr:`pending`). Returns the buckets emptied."""
         if self._links is None:
-            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + SEARCH_BUCKETS))
+            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
             self._links.fill(_UNLISTED)
         result = np.zeros(len(_SearchResult._fields), np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
@@ -1687,14 +1711,17 @@ class Engine:
     """All layers of one DP: the goal layer (cap ``goal_cap``) and one windowed layer per node (cap ``node_cap``).
 
     Cells are ``(row, col)``; distances are in cells. ``occupied`` is a bool (H, W) array, True = obstacle.
+    ``cost`` (None, or float32 (H, W), at least 1 on free cells: :class:`tdp.GridMap`'s) weights the goal layer's
+    moves, L x (cost[u] + cost[v]) / 2; node layers measure connectivity and stay unweighted (ARCHITECTURE §4).
     Map edits and goal moves take effect at the next iteration; nothing is recompiled. Each iteration relaxes
     only the tiles whose inputs changed (ARCHITECTURE §7); :meth:`activate_all` forces a dense one.
     """
 
     def __init__(self, occupied: np.ndarray, goal: tuple[int, int], *, goal_cap: float = math.inf,
                  nodes: np.ndarray | None = None, node_cap: float = 0.0, neighbourhood: int = 16,
-                 corner_cutting: bool = False):
+                 corner_cutting: bool = False, cost: np.ndarray | None = None):
         self.occupied = np.array(occupied, dtype=bool)
+        self.cost = None if cost is None else np.asarray(cost, np.float32)
         self.rows, self.cols = self.occupied.shape
         self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
         self.corner_cutting = bool(corner_cutting)
@@ -1705,11 +1732,12 @@ class Engine:
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
 
-        def kernels(lanes: int) -> _Kernels:
-            return _kernels_for(lanes, self.neighbourhood, self.corner_cutting)
+        def kernels(lanes: int, weighted: bool = False) -> _Kernels:
+            return _kernels_for(lanes, self.neighbourhood, self.corner_cutting, weighted)
 
-        self._goal = _Layers(kernels(0), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
-                             (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap)
+        max_cost = 1.0 if self.cost is None else float(self.cost[~self.occupied].max(initial=1.0))
+        self._goal = _Layers(kernels(0, self.cost is not None), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
+                             (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap, max_cost)
         self._layers = [self._goal]
         if len(self.nodes):
             self.radius = int(math.ceil(self.node_cap))
@@ -1720,9 +1748,9 @@ class Engine:
             centre = self.radius + PAD
             self._windows = _Layers(kernels(LANES), groups, (side, side), origins, (centre, centre), self.node_cap)
             self._layers.append(self._windows)
-        grid_penalties = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
-        grid_penalties[PAD:-PAD, PAD:-PAD] = np.where(self.occupied, np.inf, 0.0)
         for layers in self._layers:
+            grid_penalties = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
+            grid_penalties[PAD:-PAD, PAD:-PAD] = self._penalties(layers, self.occupied, slice(None))
             layers.gather_penalties(grid_penalties)
         self.reset()
 
@@ -1835,7 +1863,8 @@ class Engine:
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
-        """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels."""
+        """Mark ``cells`` (n, 2) as occupied or free (bool per cell); only those cells are sent to the kernels. A freed
+        cell costs what the map's ``cost`` says."""
         cells, occupied = _edit(cells, occupied)
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         self._paint(self._layers, cells, occupied)
@@ -1845,13 +1874,17 @@ class Engine:
         layer and :attr:`occupied` keep the map as it is."""
         self._paint(self._layers[1:], *_edit(cells, occupied))
 
-    @staticmethod
-    def _paint(kinds: list, cells: np.ndarray, occupied: np.ndarray) -> None:
+    def _paint(self, kinds: list, cells: np.ndarray, occupied: np.ndarray) -> None:
         if not len(cells):
             return
-        values = np.where(occupied, np.inf, 0.0).astype(np.float32)
         for layers in kinds:
-            layers.paint(cells, values)
+            layers.paint(cells, self._penalties(layers, occupied, (cells[:, 0], cells[:, 1])))
+
+    def _penalties(self, layers: "_Layers", occupied: np.ndarray, where) -> np.ndarray:
+        """The penalties of the cells ``where`` selects (an index into the map) for a kind of layer, whose occupancy
+        is ``occupied``: inf blocked; free 0, or the cell's cost for the weighted goal layer."""
+        free = 0.0 if layers is not self._goal or self.cost is None else self.cost[where]
+        return np.where(occupied, np.inf, free).astype(np.float32)
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the goal layer's source; the values propagate from it from the next iteration on."""

@@ -64,7 +64,7 @@ class ExactPlanner:
         self.grid, self.config = grid, config
         self.robot = grid.check_free_cell(start, "start")
         self.engine = Engine(grid.occupied, grid.check_free_cell(goal, "goal"), goal_cap=config.d_max,
-                             neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting)
+                             neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting, cost=grid.cost)
         self.nodes = np.zeros((0, 2), np.int32)
         self.moves = RobotMoves(grid.occupied, config.neighbourhood, config.corner_cutting, config.d_max)
         self._sweep_s = 0.0  # seconds per sweep, beyond the fixed cost, in the last slice that made any

@@ -38,7 +38,8 @@ def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndar
 
 
 class DistanceField:
-    """Distance to ``goal`` (in cells) of every cell of ``grid``, relaxed by synchronous DP iterations.
+    """Distance to ``goal`` (in cells; on a grid with costs, in cost x cells) of every cell of ``grid``, relaxed by
+    synchronous DP iterations.
 
     ``neighbourhood`` is 4, 8 or 16 (moves of length 1, sqrt 2, sqrt 5); ``corner_cutting=True`` allows the paper's
     literal moves between any two free cells; ``d_max`` caps every value (eq. 5). The field starts at iteration 0
@@ -54,7 +55,7 @@ class DistanceField:
         goal = grid.check_free_cell(goal, "goal")
         self.d_max = check_cap(d_max, "d_max")
         self._engine = Engine(grid.occupied, goal, goal_cap=self.d_max, neighbourhood=neighbourhood,
-                              corner_cutting=checks.flag(corner_cutting, "corner_cutting"))
+                              corner_cutting=checks.flag(corner_cutting, "corner_cutting"), cost=grid.cost)
 
     @property
     def goal(self) -> tuple[int, int]:

@@ -30,12 +30,25 @@ MOVINGAI_BLOCKED = frozenset("@OTW")
 _SIXTEEN_BIT = ("I", "I;16", "I;16B", "I;16L", "I;16N")
 
 
+#: The largest traversal cost a free cell may have (``GridMap(cost=...)``); the engine takes a penalty above it for an
+#: obstacle's (inf), testing against a finite bound because fast math may fold a comparison with inf away.
+MAX_COST = 1e6
+
+
 class GridMap:
     """An occupancy grid: ``occupied`` bool (H, W), True = obstacle; ``resolution`` in metres per cell;
-    ``origin`` the (x, y, yaw) pose in metres and radians of the lower-left cell's outer corner (ROS convention).
+    ``origin`` the (x, y, yaw) pose in metres and radians of the lower-left cell's outer corner (ROS convention);
+    ``cost`` None (every free cell costs 1: plain ground) or a float (H, W) array of traversal costs, between 1 and
+    MAX_COST (1e6) on every free cell (its values on obstacles are ignored): a move of length L from cell u to cell
+    v costs L x (cost[u] + cost[v]) / 2, and distances are in those units.
+
+    Raises:
+        ValueError: ``occupied`` not a non-empty 2-D bool array; a bad resolution or origin; ``cost`` not a float
+            array of the map's shape, or NaN, infinite, below 1 or above MAX_COST on a free cell.
     """
 
-    def __init__(self, occupied: np.ndarray, resolution: float = 1.0, origin: tuple[float, ...] = (0.0, 0.0)):
+    def __init__(self, occupied: np.ndarray, resolution: float = 1.0, origin: tuple[float, ...] = (0.0, 0.0),
+                 cost: np.ndarray | None = None):
         occupied = np.asarray(occupied)
         if occupied.ndim != 2 or occupied.shape[0] < 1 or occupied.shape[1] < 1:
             raise ValueError(f"occupied must be a non-empty 2-D array, got shape {occupied.shape}")
@@ -48,6 +61,7 @@ class GridMap:
             raise ValueError(f"origin must be finite (x, y) or (x, y, yaw), got {origin!r}")
         self._occupied = occupied.copy()
         self._occupied.flags.writeable = False
+        self._cost = None if cost is None else _checked_cost(cost, occupied)
         self.resolution = float(resolution)
         self.origin = origin if len(origin) == 3 else origin + (0.0,)
 
@@ -57,13 +71,19 @@ class GridMap:
         return self._occupied
 
     @property
+    def cost(self) -> np.ndarray | None:
+        """Read-only float32 (H, W) traversal costs (1 on obstacles), or None for a binary map."""
+        return self._cost
+
+    @property
     def shape(self) -> tuple[int, int]:
         """(rows, cols)."""
         return self._occupied.shape
 
     def __repr__(self) -> str:
+        costs = "" if self._cost is None else f", cost {float(self._cost.min()):g}-{float(self._cost.max()):g}"
         return (f"GridMap(shape={self.shape}, obstacles={int(self._occupied.sum())}, "
-                f"resolution={self.resolution}, origin={self.origin})")
+                f"resolution={self.resolution}, origin={self.origin}{costs})")
 
     def inflate(self, radius_cells: float) -> GridMap:
         """A new map whose obstacles grow by a disk: a cell is occupied if an obstacle's centre lies within
@@ -79,7 +99,7 @@ class GridMap:
             for dc in range(-reach, reach + 1):
                 if dr * dr + dc * dc <= radius_cells * radius_cells:
                     grown |= padded[reach + dr:reach + dr + rows, reach + dc:reach + dc + cols]
-        return GridMap(grown, self.resolution, self.origin)
+        return GridMap(grown, self.resolution, self.origin, self._cost)
 
     def contains(self, cell: tuple[int, int]) -> bool:
         """Whether ``cell`` lies inside the map."""
@@ -108,6 +128,24 @@ class GridMap:
         u = (col + 0.5) * self.resolution
         v = (self.shape[0] - 1 - row + 0.5) * self.resolution
         return ox + math.cos(yaw) * u - math.sin(yaw) * v, oy + math.sin(yaw) * u + math.cos(yaw) * v
+
+
+def _checked_cost(cost, occupied: np.ndarray) -> np.ndarray:
+    """``cost`` as a read-only float32 array, 1 on obstacles, or a ValueError naming what is wrong."""
+    if not isinstance(cost, np.ndarray) or not np.issubdtype(cost.dtype, np.floating):
+        raise ValueError(f"cost must be a float numpy array, got {getattr(cost, 'dtype', type(cost).__name__)}")
+    if cost.shape != occupied.shape:
+        raise ValueError(f"cost must have the map's shape {occupied.shape}, got {cost.shape}")
+    free = cost[~occupied]
+    for wrong, what in ((np.isnan(free), "NaN"), (np.isinf(free), "infinite"), (free < 1, "below 1"),
+                        (free > MAX_COST, f"above {MAX_COST:g}")):
+        if wrong.any():
+            row, col = np.argwhere(~occupied)[int(np.argmax(wrong))]
+            raise ValueError(f"cost must be between 1 and {MAX_COST:g} on free cells: {what} at cell "
+                             f"{(int(row), int(col))} ({float(cost[row, col])})")
+    checked = np.where(occupied, 1.0, cost).astype(np.float32)
+    checked.flags.writeable = False
+    return checked
 
 
 def rectangles(occupied: np.ndarray) -> list[tuple[int, int, int, int]]:

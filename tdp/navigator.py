@@ -55,7 +55,7 @@ class Navigator:
         self.dmax_q = config.vision * self.spacing  # DmaxQ, in cells
         self.engine = Engine(grid.occupied, goal, goal_cap=config.d_max, nodes=self.nodes,
                              node_cap=self.dmax_q + config.rise, neighbourhood=config.neighbourhood,
-                             corner_cutting=config.corner_cutting)
+                             corner_cutting=config.corner_cutting, cost=grid.cost)
         self.vertices = Vertices(self.nodes)
         self.lookout = BoxLookout(self.engine, config) if config.predict_ticks or config.avoid_boxes else None
         predicted = self.lookout.predicted if self.lookout else np.zeros(grid.shape, bool)
@@ -291,6 +291,9 @@ def _check(grid: GridMap, config: NavigatorConfig) -> None:
                          "tdp.ExactPlanner, or tdp.make_planner for whichever the config names")
     if not isinstance(grid, GridMap):
         raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
+    if config.accelerating and grid.cost is not None:
+        raise ValueError("accelerating nodes do not plan on a grid with costs yet (their backup rules compare the "
+                         "goal layer with node layers in cells); use planner 'exact' or 'plain-dp'")
 
 
 def _lattice(grid: GridMap, config: NavigatorConfig) -> tuple[np.ndarray, float]:

@@ -38,8 +38,9 @@ def move_allowed(free: np.ndarray, r: int, c: int, dr: int, dc: int, corner_cutt
     return ok(r + sr, c) and ok(r + sr, c + dc)
 
 
-def graph(occupied: np.ndarray, neighbourhood: int, corner_cutting: bool):
-    """Directed sparse graph V -> Z with weight |V - Z| for every allowed move between free cells."""
+def graph(occupied: np.ndarray, neighbourhood: int, corner_cutting: bool, cost: np.ndarray | None = None):
+    """Directed sparse graph V -> Z with weight |V - Z| for every allowed move between free cells; with ``cost``,
+    |V - Z| x (cost[V] + cost[Z]) / 2 in float64."""
     free = ~occupied
     rows, cols = free.shape
     src, dst, weight = [], [], []
@@ -48,15 +49,16 @@ def graph(occupied: np.ndarray, neighbourhood: int, corner_cutting: bool):
             if move_allowed(free, r, c, dr, dc, corner_cutting):
                 src.append(r * cols + c)
                 dst.append((r + dr) * cols + c + dc)
-                weight.append(math.hypot(dr, dc))
+                mean = 1.0 if cost is None else (float(cost[r, c]) + float(cost[r + dr, c + dc])) / 2
+                weight.append(math.hypot(dr, dc) * mean)
     n = rows * cols
     return coo_matrix((weight, (src, dst)), shape=(n, n)).tocsr()
 
 
 def distances_to(occupied: np.ndarray, goal, neighbourhood: int = 16, corner_cutting: bool = False,
-                 hops: bool = False) -> np.ndarray:
+                 hops: bool = False, cost: np.ndarray | None = None) -> np.ndarray:
     """Shortest distance from every cell to ``goal`` (inf where unreachable or occupied); move counts if hops."""
-    g = graph(occupied, neighbourhood, corner_cutting)
+    g = graph(occupied, neighbourhood, corner_cutting, cost)
     rows, cols = occupied.shape
     d = dijkstra(g.T, indices=goal[0] * cols + goal[1], unweighted=hops)
     return d.reshape(rows, cols)

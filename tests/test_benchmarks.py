@@ -13,7 +13,7 @@ RESULTS = ROOT / "benchmarks" / "results"
 @pytest.mark.parametrize("script, key", [("kernel", "results"), ("convergence", "results"), ("blockage", "rows"),
                                          ("paper", "rows"), ("worlds", "summary"), ("sweep", "rows"),
                                          ("budget", "rows"), ("predict", "summary"),
-                                         ("warehouse", "rows"), ("equal_time", "summary")])
+                                         ("warehouse", "rows"), ("equal_time", "summary"), ("costs", "rows")])
 def test_quick_benchmark_runs(script, key):
     done = subprocess.run([sys.executable, "-m", f"benchmarks.{script}", "--quick"], cwd=ROOT, capture_output=True,
                           text=True, timeout=300)

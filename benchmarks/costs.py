@@ -1,0 +1,140 @@
+"""Graded costs: converge and repair on a cost grid against the same map binary, and against scipy's Dijkstra on the
+weighted graph.
+
+    python -m benchmarks.costs [--quick]
+
+For each map, a goal in its largest free region and two kinds of cost: ``inflation`` (nav2's inflation layer's
+shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gradient near walls) and ``random``
+(uniform 1-10, every cell its own). Timed in pairs with the binary map (median of the pairs' ratios, warm): the
+from-scratch converge (a search) and the repair after a 3 x 3 box on the optimal route from the farthest reachable
+cell; the weighted field is checked against scipy's float64 Dijkstra on the weighted graph (relative 1e-4: float32
+sums over long routes).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from scipy import ndimage
+from scipy.sparse.csgraph import dijkstra
+
+import tdp
+from benchmarks.common import paired_times, print_table, quick_parser, save_results
+from benchmarks.convergence import ros_cases, route_middle
+from benchmarks.reference_graph import grid_graph
+from tdp.random_worlds import maze
+
+REPEATS, QUICK_REPEATS = 7, 3
+EQUAL_RTOL = 1e-4
+
+
+def maps(quick: bool) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """(name, occupied, goal): random maps, a maze, MovingAI's den312d and the ROS maps (inflated by the robot)."""
+    sizes = [64] if quick else [256, 512]
+    cases = []
+    for size in sizes:
+        occupied = np.random.default_rng(size).random((size, size)) < 0.2
+        cases.append((f"random {size}²", occupied, _free_cell(occupied, size)))
+    if not quick:
+        occupied = maze(256, 2, seed=7)
+        cases.append(("maze 256² (2-cell corridors)", occupied, _free_cell(occupied, 7)))
+        den = tdp.load_map("tests/data/den312d.map").occupied
+        cases.append(("den312d", den, _free_cell(den, 3)))
+        cases += [case for case in ros_cases() if case[0].endswith("#0")]
+    return cases
+
+
+def _free_cell(occupied: np.ndarray, seed: int) -> tuple[int, int]:
+    free = np.argwhere(~occupied)
+    return tuple(int(v) for v in free[np.random.default_rng(seed).integers(len(free))])
+
+
+def costs(occupied: np.ndarray, kind: str) -> np.ndarray:
+    """The cost grid of ``kind`` on the map (distances to obstacles from scipy's exact Euclidean transform)."""
+    if kind == "inflation":
+        away = ndimage.distance_transform_edt(~occupied)
+        return 1.0 + 49.0 * np.exp(-0.3 * np.maximum(away - 1.0, 0.0))
+    return 1.0 + 9.0 * np.random.default_rng(occupied.size).random(occupied.shape)
+
+
+def measure(name: str, occupied: np.ndarray, goal, kind: str, repeats: int) -> dict:
+    binary = tdp.DistanceField(tdp.GridMap(occupied), goal)
+    grid = tdp.GridMap(occupied, cost=costs(occupied, kind))
+    weighted = tdp.DistanceField(grid, goal)
+    for field in (binary, weighted):
+        field.converge()
+
+    def scratch(field):
+        return lambda: (field.reset(), field.converge())
+
+    weighted_s, binary_s, scratch_ratio = paired_times(scratch(weighted), scratch(binary), repeats)
+    reference = dijkstra(grid_graph(occupied, cost=grid.cost).T, indices=goal[0] * occupied.shape[1] + goal[1])
+    reference = reference.reshape(occupied.shape)
+    ours = weighted.distances()
+    finite = np.isfinite(reference)
+    equal = bool(np.array_equal(np.isfinite(ours), finite)
+                 and np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
+    repair_ratio, repair_ms = repair_pairs(binary, weighted, repeats)
+    return {"map": name, "cost": kind, "cells": occupied.size, "scratch_ms": weighted_s * 1e3,
+            "binary_scratch_ms": binary_s * 1e3, "scratch_ratio": scratch_ratio, "repair_ms": repair_ms,
+            "repair_ratio": repair_ratio, "equal": equal}
+
+
+def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats: int) -> tuple[float, float]:
+    """The median ratio weighted / binary of a 3 x 3 box's repair on each field's own optimal route from its
+    farthest reachable cell (timed in turn), and the weighted repair's median in ms."""
+    boxes = []
+    for field in (weighted, binary):
+        (r, c), _ = route_middle(field, field.distances())
+        boxes.append([(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)
+                      if (r + i, c + j) != field.goal and 0 <= r + i < field.occupied.shape[0]
+                      and 0 <= c + j < field.occupied.shape[1] and not field.occupied[r + i, c + j]])
+    ratios, times = [], []
+    for _ in range(repeats + 1):
+        pair = []
+        for field, box in zip((weighted, binary), boxes):
+            field.set_occupied(box)
+            began = time.perf_counter()
+            field.converge()
+            pair.append(time.perf_counter() - began)
+            field.set_occupied(box, False)
+            field.converge()
+        ratios.append(pair[0] / pair[1])
+        times.append(pair[0])
+    return float(np.median(ratios[1:])), float(np.median(times[1:])) * 1e3
+
+
+def figure(rows: list[dict], path) -> None:
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(9, 4))
+    labels = [f"{row['map']}\n{row['cost']}" for row in rows]
+    x = np.arange(len(rows))
+    ax.bar(x - 0.2, [row["scratch_ratio"] for row in rows], 0.4, label="converge from scratch")
+    ax.bar(x + 0.2, [row["repair_ratio"] for row in rows], 0.4, label="repair after a 3 x 3 box")
+    ax.axhline(1.5, color="tab:red", ls="--", lw=1, label="target 1.5x")
+    ax.axhline(1.0, color="0.5", lw=0.8)
+    ax.set_xticks(x, labels, fontsize=7, rotation=30, ha="right")
+    ax.set_ylabel("time on the cost grid / on the same map binary")
+    ax.legend(fontsize=8)
+    save_figure(fig, path)
+
+
+def main() -> None:
+    args = quick_parser(__doc__).parse_args()
+    repeats = QUICK_REPEATS if args.quick else REPEATS
+    rows = []
+    for name, occupied, goal in maps(args.quick):
+        for kind in ("inflation", "random"):
+            rows.append(measure(name, occupied, goal, kind, repeats))
+            print(f"  {name}, {kind}: done", flush=True)
+    print_table(["map", "cost", "converge ms", "binary ms", "ratio", "repair ms", "ratio", "equal to scipy"],
+                [[r["map"], r["cost"], f"{r['scratch_ms']:.2f}", f"{r['binary_scratch_ms']:.2f}",
+                  f"{r['scratch_ratio']:.2f}", f"{r['repair_ms']:.2f}", f"{r['repair_ratio']:.2f}", str(r["equal"])]
+                 for r in rows])
+    save_results("costs-quick" if args.quick else "costs", {"rows": rows}, lambda path: figure(rows, path))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,175 @@
+"""Graded traversal costs (GridMap(cost=...)): the goal layer weighted by L x (cost[u] + cost[v]) / 2, checked against
+scipy's Dijkstra on the weighted graph (tests/reference.py) for every stencil and corner rule, from scratch, after
+random edits, focused and by synchronous iterations; a map whose costs are all 1 gives the binary map's values bit for
+bit."""
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import tdp
+from reference import distances_to
+
+#: The costs' ranges: mild (1-1.5), a robot map's inflation gradient (1-10), extreme (1-250).
+RANGES = [1.5, 10.0, 250.0]
+
+
+@st.composite
+def cost_maps(draw):
+    """(occupied, cost, goal): a random map with random costs over one of RANGES."""
+    rows, cols = draw(st.integers(3, 16)), draw(st.integers(3, 16))
+    rng = np.random.default_rng(draw(st.integers(0, 2**31)))
+    occupied = rng.random((rows, cols)) < draw(st.sampled_from([0.0, 0.15, 0.3]))
+    top = draw(st.sampled_from(RANGES))
+    cost = 1.0 + (top - 1.0) * rng.random((rows, cols)) ** draw(st.sampled_from([1.0, 4.0]))
+    goal = (draw(st.integers(0, rows - 1)), draw(st.integers(0, cols - 1)))
+    occupied[goal] = False
+    return occupied, cost, goal
+
+
+def reference(grid: tdp.GridMap, goal, neighbourhood: int, corner_cutting: bool) -> np.ndarray:
+    return distances_to(grid.occupied, goal, neighbourhood, corner_cutting, cost=grid.cost)
+
+
+def assert_equal_within_float32(ours: np.ndarray, expected: np.ndarray) -> None:
+    np.testing.assert_array_equal(np.isinf(ours), np.isinf(expected))
+    finite = np.isfinite(expected)
+    np.testing.assert_allclose(ours[finite], expected[finite], rtol=1e-5, atol=1e-5)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(cost_maps(), st.sampled_from([4, 8, 16]), st.booleans())
+def test_converged_weighted_field_equals_dijkstra_on_the_weighted_graph(case, neighbourhood, corner_cutting):
+    occupied, cost, goal = case
+    grid = tdp.GridMap(occupied, cost=cost)
+    field = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+    field.converge()
+    assert_equal_within_float32(field.distances(), reference(grid, goal, neighbourhood, corner_cutting))
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(cost_maps(), st.sampled_from([8, 16]), st.lists(st.tuples(st.integers(0, 15), st.integers(0, 15),
+                                                                   st.booleans()), min_size=1, max_size=12))
+def test_repairs_after_random_edits_equal_dijkstra_on_the_edited_map(case, neighbourhood, edits):
+    occupied, cost, goal = case
+    grid = tdp.GridMap(occupied, cost=cost)
+    field = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    field.converge()
+    now = occupied.copy()
+    for row, col, blocked in edits:
+        cell = (row % now.shape[0], col % now.shape[1])
+        if cell == goal:
+            continue
+        field.set_occupied([cell], blocked)
+        now[cell] = blocked
+        field.converge()
+        expected = distances_to(now, goal, neighbourhood, False, cost=grid.cost)
+        assert_equal_within_float32(field.distances(), expected)
+
+
+@settings(max_examples=25, deadline=None)
+@given(cost_maps(), st.sampled_from([4, 8, 16]))
+def test_synchronous_iterations_reach_the_weighted_fixed_point_bit_for_bit(case, neighbourhood):
+    occupied, cost, goal = case
+    grid = tdp.GridMap(occupied, cost=cost)
+    converged = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    converged.converge()
+    iterated = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    iterated.step(occupied.size + 1)
+    np.testing.assert_array_equal(iterated.distances(), converged.distances())
+
+
+@settings(max_examples=25, deadline=None)
+@given(cost_maps(), st.sampled_from([8, 16]), st.integers(0, 2**31))
+def test_a_focused_converge_gives_the_focus_its_exact_weighted_distance_and_route(case, neighbourhood, seed):
+    occupied, cost, goal = case
+    grid = tdp.GridMap(occupied, cost=cost)
+    free = np.argwhere(~occupied)
+    focus = tuple(int(v) for v in free[np.random.default_rng(seed).integers(len(free))])
+    field = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    field.converge(focus=focus)
+    full = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    full.converge()
+    assert field.distance(focus) == full.distance(focus)
+    assert field.path(focus) == full.path(focus)
+
+
+def test_costs_of_one_give_the_binary_values_bit_for_bit():
+    rng = np.random.default_rng(5)
+    occupied = rng.random((40, 50)) < 0.25
+    occupied[20, 25] = False
+    binary = tdp.DistanceField(tdp.GridMap(occupied), (20, 25))
+    ones = tdp.DistanceField(tdp.GridMap(occupied, cost=np.ones(occupied.shape)), (20, 25))
+    binary.converge()
+    ones.converge()
+    np.testing.assert_array_equal(ones.distances(), binary.distances())
+
+
+def test_a_path_on_a_cost_map_keeps_to_cheap_ground_and_its_cost_is_the_distance():
+    occupied = np.zeros((21, 21), bool)
+    cost = np.ones((21, 21))
+    cost[8:13, 3:18] = 20.0  # an expensive band across the straight line from (10, 0) to (10, 20)
+    grid = tdp.GridMap(occupied, cost=cost)
+    field = tdp.DistanceField(grid, (10, 20))
+    field.converge()
+    path = field.path((10, 0))
+    assert max(grid.cost[cell] for cell in path) < 20.0  # round the band, not through it
+    paid = sum(np.hypot(b[0] - a[0], b[1] - a[1]) * (grid.cost[a] + grid.cost[b]) / 2 for a, b in zip(path, path[1:]))
+    assert paid == pytest.approx(field.distance((10, 0)), rel=1e-5)
+
+
+def test_the_exact_planner_drives_the_cheapest_route_on_a_cost_map():
+    occupied = np.zeros((21, 21), bool)
+    cost = np.ones((21, 21))
+    cost[8:13, 3:18] = 20.0
+    grid = tdp.GridMap(occupied, cost=cost)
+    planner = tdp.ExactPlanner(grid, (10, 0), (10, 20))
+    planner.setup()
+    robot, paid = (10, 0), 0.0
+    for _ in range(100):
+        step = planner.tick().next_cell
+        if step is None:
+            break
+        paid += np.hypot(step[0] - robot[0], step[1] - robot[1]) * (grid.cost[robot] + grid.cost[step]) / 2
+        robot = step
+        planner.move_robot(robot)
+    assert robot == (10, 20)
+    expected = reference(grid, (10, 20), 16, False)[10, 0]
+    assert paid == pytest.approx(expected, rel=1e-5)
+
+
+@pytest.mark.parametrize("cost, message", [
+    (np.ones((4, 4)), "shape"),
+    (np.ones((4, 5), int), "float"),
+    ([[1.0] * 5] * 4, "float"),
+    (np.full((4, 5), 0.5), "below 1"),
+    (np.full((4, 5), np.nan), "NaN"),
+    (np.full((4, 5), np.inf), "infinite"),
+])
+def test_a_bad_cost_array_is_a_clear_value_error(cost, message):
+    with pytest.raises(ValueError, match=message):
+        tdp.GridMap(np.zeros((4, 5), bool), cost=cost)
+
+
+def test_costs_on_obstacles_are_ignored_and_inflating_keeps_the_costs():
+    occupied = np.zeros((5, 5), bool)
+    occupied[2, 2] = True
+    cost = np.full((5, 5), 2.0)
+    cost[2, 2] = np.nan  # on an obstacle: ignored
+    grid = tdp.GridMap(occupied, cost=cost)
+    assert grid.cost[2, 2] == 1.0 and grid.cost[0, 0] == 2.0
+    inflated = grid.inflate(1)
+    free = ~inflated.occupied
+    assert np.array_equal(inflated.cost[free], grid.cost[free]) and (inflated.cost[~free] == 1).all()
+
+
+def test_plain_dp_plans_on_costs_and_accelerating_nodes_refuse_them_clearly():
+    occupied = np.zeros((21, 21), bool)
+    cost = np.ones((21, 21))
+    cost[8:13, 3:18] = 20.0
+    grid = tdp.GridMap(occupied, cost=cost)
+    plain = tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner="plain-dp", updates_per_move=50))
+    plain.setup()
+    assert max(grid.cost[cell] for cell in plain.current_path()) < 20.0
+    with pytest.raises(ValueError, match="costs"):
+        tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner="accelerating"))
