@@ -6,9 +6,9 @@ weighted graph.
 For each map, a goal in its largest free region and two kinds of cost: ``inflation`` (nav2's inflation layer's
 shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gradient near walls) and ``random``
 (uniform 1-10, every cell its own). Timed in pairs with the binary map (median of the pairs' ratios, warm): the
-from-scratch converge (a search) and the repair after a 3 x 3 box on the optimal route from the farthest reachable
-cell; the weighted field is checked against scipy's float64 Dijkstra on the weighted graph (relative 1e-4: float32
-sums over long routes).
+from-scratch converge (a search) and the repair after a 3 x 3 box on the weighted optimal route from the farthest
+reachable cell (the same cells on both maps); the weighted field is checked against scipy's float64 Dijkstra on the
+weighted graph (relative 1e-4: float32 sums over long routes).
 """
 from __future__ import annotations
 
@@ -81,18 +81,16 @@ def measure(name: str, occupied: np.ndarray, goal, kind: str, repeats: int) -> d
 
 
 def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats: int) -> tuple[float, float]:
-    """The median ratio weighted / binary of a 3 x 3 box's repair on each field's own optimal route from its
-    farthest reachable cell (timed in turn), and the weighted repair's median in ms."""
-    boxes = []
-    for field in (weighted, binary):
-        (r, c), _ = route_middle(field, field.distances())
-        boxes.append([(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)
-                      if (r + i, c + j) != field.goal and 0 <= r + i < field.occupied.shape[0]
-                      and 0 <= c + j < field.occupied.shape[1] and not field.occupied[r + i, c + j]])
+    """The median ratio weighted / binary of the same edit's repair - a 3 x 3 box on the weighted field's optimal
+    route from its farthest reachable cell - timed in turn, and the weighted repair's median in ms."""
+    (r, c), _ = route_middle(weighted, weighted.distances())
+    box = [(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)
+           if (r + i, c + j) != weighted.goal and 0 <= r + i < weighted.occupied.shape[0]
+           and 0 <= c + j < weighted.occupied.shape[1] and not weighted.occupied[r + i, c + j]]
     ratios, times = [], []
     for _ in range(repeats + 1):
         pair = []
-        for field, box in zip((weighted, binary), boxes):
+        for field in (weighted, binary):
             field.set_occupied(box)
             began = time.perf_counter()
             field.converge()
