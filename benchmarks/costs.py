@@ -8,7 +8,8 @@ shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gr
 (uniform 1-10, every cell its own). Timed in pairs with the binary map (median of the pairs' ratios, warm): the
 from-scratch converge (a search) and the repair after a 3 x 3 box on the weighted optimal route from the farthest
 reachable cell (the same cells on both maps); the weighted field is checked against scipy's float64 Dijkstra on the
-weighted graph (relative 1e-4: float32 sums over long routes).
+weighted graph (relative 1e-4: float32 sums over long routes). Then the paths: on the ROS maps, how much farther
+from the walls a path keeps with nav2's inflation cost than on the binary map, and at what length.
 """
 from __future__ import annotations
 
@@ -20,11 +21,14 @@ from scipy.sparse.csgraph import dijkstra
 
 import tdp
 from benchmarks.common import paired_times, print_table, quick_parser, save_results
-from benchmarks.convergence import ros_cases, route_middle
+from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, ROOT, largest_free_region, ros_cases, route_middle
 from benchmarks.reference_graph import grid_graph
 from tdp.random_worlds import maze
 
 REPEATS, QUICK_REPEATS = 7, 3
+ROS_MAPS = [("turtlebot3_world", ROOT / "tests" / "data" / "turtlebot3_world" / "map.yaml"),
+            ("nav2 warehouse", NAV2 / "warehouse.yaml"), ("nav2 depot", NAV2 / "depot.yaml")]
+PAIRS = 8
 EQUAL_RTOL = 1e-4
 
 
@@ -102,6 +106,34 @@ def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats
     return float(np.median(ratios[1:])), float(np.median(times[1:])) * 1e3
 
 
+def clearance(quick: bool) -> list[dict]:
+    """On the ROS maps inflated by ROBOT_RADIUS_M, the converged field's path between random pairs of the largest
+    free region with nav2's inflation cost (``cost_scaling_factor`` 3 per metre, ``inflation_radius`` 1.05 m)
+    against the binary map's: the mean clearance of its cells (metres to the nearest obstacle of the map as loaded)
+    and its length, as ratios."""
+    rows = []
+    for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
+        grid = tdp.load_map(path)
+        radius = ROBOT_RADIUS_M / grid.resolution
+        binary = grid.inflate(radius)
+        costed = grid.inflate(radius, cost_scaling_factor=3.0, inflation_radius=1.05)
+        away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
+        free = largest_free_region(binary.occupied)
+        rng = np.random.default_rng(1)
+        for pair in range(2 if quick else PAIRS):
+            start, goal = (tuple(int(v) for v in free[rng.integers(len(free))]) for _ in range(2))
+            routes = []
+            for which in (binary, costed):
+                field = tdp.DistanceField(which, goal)
+                field.converge()
+                routes.append(field.path(start))
+            lengths = [sum(np.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(r, r[1:])) for r in routes]
+            clear = [float(np.mean([away_m[cell] for cell in r])) for r in routes]
+            rows.append({"map": name, "pair": pair, "clearance_ratio": clear[1] / clear[0],
+                         "length_ratio": lengths[1] / max(lengths[0], 1e-9)})
+    return rows
+
+
 def figure(rows: list[dict], path) -> None:
     from tdp.plot import pyplot, save_figure
 
@@ -131,7 +163,15 @@ def main() -> None:
                 [[r["map"], r["cost"], f"{r['scratch_ms']:.2f}", f"{r['binary_scratch_ms']:.2f}",
                   f"{r['scratch_ratio']:.2f}", f"{r['repair_ms']:.2f}", f"{r['repair_ratio']:.2f}", str(r["equal"])]
                  for r in rows])
-    save_results("costs-quick" if args.quick else "costs", {"rows": rows}, lambda path: figure(rows, path))
+    paths = clearance(args.quick)
+    print_table(["map", "pair", "clearance, costed / binary", "length, costed / binary"],
+                [[r["map"], str(r["pair"]), f"{r['clearance_ratio']:.2f}", f"{r['length_ratio']:.2f}"] for r in paths])
+    for name in dict.fromkeys(r["map"] for r in paths):
+        mine = [r for r in paths if r["map"] == name]
+        print(f"{name}: mean clearance ratio {np.mean([r['clearance_ratio'] for r in mine]):.2f}, "
+              f"mean length ratio {np.mean([r['length_ratio'] for r in mine]):.2f}")
+    save_results("costs-quick" if args.quick else "costs", {"rows": rows, "clearance": paths},
+                 lambda path: figure(rows, path))
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ from . import random_worlds, scenarios
 from .contract import Mode, Planner, TickResult
 from .exact import ExactPlanner
 from .field import DistanceField
-from .grid import GridMap, Problem, load_map, load_scenarios
+from .grid import GridMap, Problem, costmap_grid, load_map, load_scenarios
 from .config import NavigatorConfig
 from .navigator import Navigator
 from .planners import make_planner
@@ -15,6 +15,6 @@ from .world import Obstacle, Scenario
 from .worldfile import load_world
 
 __all__ = ["DistanceField", "Episode", "ExactPlanner", "GridMap", "Mode", "Navigator", "NavigatorConfig", "Obstacle",
-           "Planner", "Problem", "Scenario", "TickResult", "load_map", "load_scenarios", "load_world", "make_planner",
-           "random_worlds", "scenarios", "simulate"]
+           "Planner", "Problem", "Scenario", "TickResult", "costmap_grid", "load_map", "load_scenarios", "load_world",
+           "make_planner", "random_worlds", "scenarios", "simulate"]
 __version__ = "0.1.0"

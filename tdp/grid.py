@@ -13,6 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 import yaml
+from scipy import ndimage
 from PIL import Image, UnidentifiedImageError
 
 from . import checks
@@ -85,21 +86,38 @@ class GridMap:
         return (f"GridMap(shape={self.shape}, obstacles={int(self._occupied.sum())}, "
                 f"resolution={self.resolution}, origin={self.origin}{costs})")
 
-    def inflate(self, radius_cells: float) -> GridMap:
+    def inflate(self, radius_cells: float, *, cost_scaling_factor: float | None = None,
+                inflation_radius: float | None = None) -> GridMap:
         """A new map whose obstacles grow by a disk: a cell is occupied if an obstacle's centre lies within
-        ``radius_cells`` (Euclidean, in cells) of its centre."""
+        ``radius_cells`` (Euclidean, in cells) of its centre - the robot's inscribed radius.
+
+        With ``cost_scaling_factor`` (per metre) and ``inflation_radius`` (metres), as nav2's inflation layer names
+        them, the free cells within ``inflation_radius`` of an obstacle also get nav2's inflation cost,
+        ``252 exp(-cost_scaling_factor (d - radius))`` at d metres from the nearest obstacle cell (radius: the
+        inscribed radius, ``radius_cells`` in metres), turned into a traversal cost by :func:`costmap_cost`; costs the
+        map had already are kept where they are higher. Distances come from scipy's exact Euclidean transform.
+
+        Raises:
+            ValueError: a radius or factor that is not a finite number >= 0, or only one of the two cost parameters.
+        """
         if not (isinstance(radius_cells, (int, float)) and math.isfinite(radius_cells) and radius_cells >= 0):
             raise ValueError(f"radius_cells must be a finite number >= 0, got {radius_cells!r}")
-        reach = int(math.floor(radius_cells))
-        rows, cols = self.shape
-        padded = np.zeros((rows + 2 * reach, cols + 2 * reach), bool)
-        padded[reach:reach + rows, reach:reach + cols] = self._occupied
-        grown = np.zeros_like(self._occupied)
-        for dr in range(-reach, reach + 1):
-            for dc in range(-reach, reach + 1):
-                if dr * dr + dc * dc <= radius_cells * radius_cells:
-                    grown |= padded[reach + dr:reach + dr + rows, reach + dc:reach + dc + cols]
-        return GridMap(grown, self.resolution, self.origin, self._cost)
+        if (cost_scaling_factor is None) != (inflation_radius is None):
+            raise ValueError("cost_scaling_factor and inflation_radius go together (nav2's inflation layer); got "
+                             f"{cost_scaling_factor!r} and {inflation_radius!r}")
+        away = np.full(self.shape, np.inf)  # cells from the nearest obstacle cell's centre
+        if self._occupied.any():
+            away = ndimage.distance_transform_edt(~self._occupied)
+        grown = self._occupied | (np.rint(away ** 2) <= radius_cells * radius_cells)  # squared: exact, as integers
+        cost = self._cost
+        if cost_scaling_factor is not None:
+            factor = checks.number(cost_scaling_factor, "cost_scaling_factor", 0.0)
+            reach_m = checks.number(inflation_radius, "inflation_radius", 0.0)
+            away_m, inscribed_m = away * self.resolution, radius_cells * self.resolution
+            nav2 = np.where(away_m <= reach_m, 252.0 * np.exp(-factor * (away_m - inscribed_m)), 0.0)
+            inflation = costmap_cost(np.minimum(nav2, 252.0))
+            cost = inflation if cost is None else np.maximum(cost, inflation)
+        return GridMap(grown, self.resolution, self.origin, None if cost is None else np.asarray(cost, np.float64))
 
     def contains(self, cell: tuple[int, int]) -> bool:
         """Whether ``cell`` lies inside the map."""
@@ -128,6 +146,34 @@ class GridMap:
         u = (col + 0.5) * self.resolution
         v = (self.shape[0] - 1 - row + 0.5) * self.resolution
         return ox + math.cos(yaw) * u - math.sin(yaw) * v, oy + math.sin(yaw) * u + math.cos(yaw) * v
+
+
+#: NavFn's mapping from a nav2 costmap's values to traversal costs: a free cell costs COST_NEUTRAL (50), a cell of
+#: cost c costs COST_NEUTRAL + COST_FACTOR (0.8) x c; relative to free ground, 1 + 0.016 c (1 to 5.03 for 0-252).
+NAVFN_NEUTRAL, NAVFN_FACTOR = 50.0, 0.8
+
+
+def costmap_cost(values: np.ndarray) -> np.ndarray:
+    """Traversal costs (1 = free ground) of nav2 costmap values 0-252 by NavFn's mapping, 1 + 0.8 c / 50."""
+    return 1.0 + NAVFN_FACTOR * np.asarray(values, np.float64) / NAVFN_NEUTRAL
+
+
+def costmap_grid(costmap: np.ndarray, resolution: float = 1.0, origin: tuple[float, ...] = (0.0, 0.0), *,
+                 unknown_is_free: bool = False) -> GridMap:
+    """A GridMap from a nav2 costmap array (uint8 or ints 0-255, row 0 the top row): 254 (lethal) and 253
+    (inscribed) are obstacles, 255 (unknown) too unless ``unknown_is_free``, and 0-252 are free with the cost of
+    :func:`costmap_cost`.
+
+    Raises:
+        ValueError: not a 2-D integer array of values 0-255.
+    """
+    costmap = np.asarray(costmap)
+    if costmap.ndim != 2 or not np.issubdtype(costmap.dtype, np.integer):
+        raise ValueError(f"costmap must be a 2-D integer array, got {costmap.dtype} of shape {costmap.shape}")
+    if costmap.size and (costmap.min() < 0 or costmap.max() > 255):
+        raise ValueError(f"costmap values must be 0-255, got {int(costmap.min())}-{int(costmap.max())}")
+    occupied = (costmap == 253) | (costmap == 254) | ((costmap == 255) & (not unknown_is_free))
+    return GridMap(occupied, resolution, origin, costmap_cost(np.where(costmap > 252, 0, costmap)))
 
 
 def _checked_cost(cost, occupied: np.ndarray) -> np.ndarray:

@@ -173,3 +173,27 @@ def test_plain_dp_plans_on_costs_and_accelerating_nodes_refuse_them_clearly():
     assert max(grid.cost[cell] for cell in plain.current_path()) < 20.0
     with pytest.raises(ValueError, match="costs"):
         tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner="accelerating"))
+
+
+def test_nav2_inflation_costs_decay_from_the_inscribed_radius_as_nav2_computes_them():
+    occupied = np.zeros((9, 9), bool)
+    occupied[4, 4] = True
+    grid = tdp.GridMap(occupied, resolution=0.1).inflate(1, cost_scaling_factor=10.0, inflation_radius=0.3)
+    assert grid.occupied.sum() == 5  # the obstacle and its four neighbours within 1 cell
+    for cell, metres in (((3, 3), 0.1 * np.sqrt(2)), ((2, 4), 0.2), ((2, 2), 0.2 * np.sqrt(2))):
+        nav2 = 252 * np.exp(-10.0 * (metres - 0.1))  # nav2's inflation layer, then NavFn's 1 + 0.8 c / 50
+        assert grid.cost[cell] == pytest.approx(1 + 0.8 * nav2 / 50, rel=1e-6)
+    assert grid.cost[1, 4] == 1.0 and grid.cost[0, 0] == 1.0  # beyond the inflation radius (0.3 m)
+    with pytest.raises(ValueError, match="together"):
+        tdp.GridMap(occupied).inflate(1, cost_scaling_factor=3.0)
+
+
+def test_a_nav2_costmap_converts_lethal_inscribed_and_unknown_to_obstacles_and_the_rest_to_costs():
+    costmap = np.array([[0, 100, 252], [253, 254, 255]], np.uint8)
+    grid = tdp.costmap_grid(costmap, resolution=0.05)
+    assert grid.occupied.tolist() == [[False, False, False], [True, True, True]]
+    assert grid.cost[0].tolist() == pytest.approx([1.0, 1 + 0.8 * 100 / 50, 1 + 0.8 * 252 / 50])
+    assert not tdp.costmap_grid(costmap, unknown_is_free=True).occupied[1, 2]
+    for bad in (np.array([[0.5]]), np.array([[300]]), np.zeros(3, np.uint8)):
+        with pytest.raises(ValueError, match="costmap"):
+            tdp.costmap_grid(bad)
