@@ -62,3 +62,12 @@ def distances_to(occupied: np.ndarray, goal, neighbourhood: int = 16, corner_cut
     rows, cols = occupied.shape
     d = dijkstra(g.T, indices=goal[0] * cols + goal[1], unweighted=hops)
     return d.reshape(rows, cols)
+
+
+def assert_distances_match(ours: np.ndarray, expected: np.ndarray, rtol: float) -> None:
+    """``ours`` (float32, no NaN) is inf exactly where ``expected`` is, and within ``rtol`` elsewhere."""
+    assert ours.dtype == np.float32
+    assert not np.isnan(ours).any()
+    np.testing.assert_array_equal(np.isinf(ours), np.isinf(expected))
+    finite = np.isfinite(expected)
+    np.testing.assert_allclose(ours[finite], expected[finite], rtol=rtol, atol=1e-5)

@@ -7,7 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import tdp
-from reference import distances_to
+from reference import assert_distances_match, distances_to
 
 
 @st.composite
@@ -31,11 +31,7 @@ def field_on(occupied: np.ndarray, goal: tuple[int, int], **options) -> tdp.Dist
 
 
 def assert_same_distances(ours: np.ndarray, reference: np.ndarray) -> None:
-    assert ours.dtype == np.float32
-    assert not np.isnan(ours).any()
-    np.testing.assert_array_equal(np.isinf(ours), np.isinf(reference))
-    finite = np.isfinite(reference)
-    np.testing.assert_allclose(ours[finite], reference[finite], rtol=2e-6, atol=1e-5)
+    assert_distances_match(ours, reference, rtol=2e-6)
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
