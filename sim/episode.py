@@ -95,7 +95,7 @@ class _Run:
         gx, gy = self.grid.cell_to_world(*scenario.goal)
         self.robot = DiffDriveRobot(client, x, y, math.atan2(gy - y, gx - x))
         self.controller = PurePursuit(max_v=sim.max_speed)
-        self.trace: list[tuple[float, float, str]] = [(x, y, "exact" if config.planner == "exact" else "dp")]
+        self.trace: list[tuple[float, float, Mode]] = [(x, y, Mode.EXACT if config.planner == "exact" else Mode.DP)]
         self.length_m = 0.0
         self.contact_steps = 0
         self.min_clearance = math.inf
