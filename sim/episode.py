@@ -88,7 +88,8 @@ class _Run:
         for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
             if mask[cell]:
                 raise ValueError(f"{name} {cell} is within {sim.inflate_m} m of an obstacle: no room for the robot")
-        self.navigator = tdp.make_planner(tdp.GridMap(mask), scenario.start, scenario.goal, config)
+        grid = tdp.GridMap(mask, cost=scenario.grid.cost)  # the world's traversal costs, if it has any
+        self.navigator = tdp.make_planner(grid, scenario.start, scenario.goal, config)
         self.feed = WorldFeed(mask, scenario.goal)
         self.navigator.setup()
         x, y = self.grid.cell_to_world(*scenario.start)

@@ -155,8 +155,8 @@ def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> d
 
 
 def start_grid(scenario: Scenario) -> GridMap:
-    """The scenario's map as it stands at tick 0 (its obstacles at their first positions)."""
-    return GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin)
+    """The scenario's map as it stands at tick 0 (its obstacles at their first positions), with its costs."""
+    return GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin, scenario.grid.cost)
 
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:

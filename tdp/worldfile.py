@@ -5,7 +5,8 @@
 name: my-world                # optional
 description: a box closes the door
 map: maps/office.yaml         # any file tdp.load_map reads, relative to this file; or a mapping:
-                              #   {file: ..., unknown_is_free: false, threshold: 0.5, inflate_m: 0.2}
+                              #   {file: ..., unknown_is_free: false, threshold: 0.5, inflate_m: 0.2,
+                              #    cost_scaling_factor: 3.0, inflation_radius: 1.0}  (nav2's inflation costs)
                               #   {rows: 100, cols: 100, obstacles: [[r0, c0, r1, c1], ...],
                               #    resolution: 1.0, origin: [x, y, yaw]}   (a map made of rectangles)
 units: cells                  # cells (default) or metres
@@ -44,7 +45,7 @@ from .world import Obstacle, Scenario
 UNITS = ("cells", "metres")
 _TOP = {"name", "description", "map", "units", "tick_s", "start", "goal", "max_ticks", "max_s", "obstacles", "target",
         "change_tick", "change_s", "blocking"}
-_MAP_FILE = {"file", "unknown_is_free", "threshold", "inflate_m"}
+_MAP_FILE = {"file", "unknown_is_free", "threshold", "inflate_m", "cost_scaling_factor", "inflation_radius"}
 _MAP_INLINE = {"rows", "cols", "obstacles", "resolution", "origin"}
 _OBSTACLE = {"cells": {"box", "waypoints", "speed", "appear_at", "vanish_at"},
              "metres": {"box", "waypoints", "speed", "appear_s", "vanish_s"}}
@@ -159,8 +160,14 @@ def _map(read: _Reader, value, folder: Path) -> tuple[GridMap, dict]:
             grid = load_map(file, **options)
         except FileNotFoundError:
             read.fail("map.file", f"no such map file {file}")
-        if "inflate_m" in spec:
-            grid = grid.inflate(read.number(spec["inflate_m"], "map.inflate_m", 0.0) / grid.resolution)
+        inflation = {key: read.number(spec[key], f"map.{key}", 0.0)
+                     for key in ("cost_scaling_factor", "inflation_radius") if key in spec}
+        if len(inflation) == 1:
+            read.fail(f"map.{next(iter(inflation))}", "cost_scaling_factor and inflation_radius go together (nav2's "
+                                                      "inflation layer)")
+        if "inflate_m" in spec or inflation:
+            radius_m = read.number(spec.get("inflate_m", 0.0), "map.inflate_m", 0.0)
+            grid = grid.inflate(radius_m / grid.resolution, **inflation)
         return grid, {**spec, "file": str(file.resolve())}
     spec = read.mapping(value, "map", _MAP_INLINE)
     rows, cols = (read.integer(spec.get(k), f"map.{k}", 1) for k in ("rows", "cols"))

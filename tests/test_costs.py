@@ -2,6 +2,8 @@
 scipy's Dijkstra on the weighted graph (tests/reference.py) for every stencil and corner rule, from scratch, after
 random edits, focused and by synchronous iterations; a map whose costs are all 1 gives the binary map's values bit for
 bit."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -10,6 +12,7 @@ from hypothesis import strategies as st
 import tdp
 from reference import assert_distances_match, distances_to
 
+ROOT = Path(__file__).resolve().parents[1]
 #: The costs' ranges: mild (1-1.5), a robot map's inflation gradient (1-10), extreme (1-250).
 RANGES = [1.5, 10.0, 250.0]
 
@@ -195,3 +198,31 @@ def test_a_nav2_costmap_converts_lethal_inscribed_and_unknown_to_obstacles_and_t
     for bad in (np.array([[0.5]]), np.array([[300]]), np.zeros(3, np.uint8)):
         with pytest.raises(ValueError, match="costmap"):
             tdp.costmap_grid(bad)
+
+
+def costed_world(tmp_path, extra: str = "inflation_radius: 0.6"):
+    """The TurtleBot3 world of examples/ with nav2's inflation costs in its map entry."""
+    text = (ROOT / "examples" / "turtlebot3-world.yaml").read_text()
+    map_line = "map: ../tdp/maps/turtlebot3_world/map.yaml"
+    path = tmp_path / "costed.yaml"
+    path.write_text(text.replace(map_line, f"map: {{file: {ROOT / 'tdp/maps/turtlebot3_world/map.yaml'}, "
+                                           f"cost_scaling_factor: 3.0, {extra}}}"))
+    return path
+
+
+def test_a_world_file_with_inflation_costs_plans_on_them_at_grid_level_and_in_pybullet(tmp_path):
+    from sim.episode import run_episode
+
+    world = tdp.load_world(costed_world(tmp_path))
+    assert world.grid.cost is not None and world.grid.cost.max() > 1
+    episode = tdp.simulate(world, tdp.NavigatorConfig())
+    assert episode.reached and episode.collisions == 0
+    with pytest.raises(ValueError, match="costs"):
+        tdp.simulate(world, tdp.NavigatorConfig(planner="accelerating"))
+    metrics = run_episode(world, tdp.NavigatorConfig())
+    assert metrics["reached"] and metrics["contacts"] == 0
+
+
+def test_a_world_file_with_only_half_of_the_inflation_parameters_is_refused(tmp_path):
+    with pytest.raises(ValueError, match="go together"):
+        tdp.load_world(costed_world(tmp_path, extra="threshold: 0.5"))
