@@ -130,8 +130,43 @@ def clearance(quick: bool) -> list[dict]:
             lengths = [sum(np.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(r, r[1:])) for r in routes]
             clear = [float(np.mean([away_m[cell] for cell in r])) for r in routes]
             rows.append({"map": name, "pair": pair, "clearance_ratio": clear[1] / clear[0],
-                         "length_ratio": lengths[1] / max(lengths[0], 1e-9)})
+                         "length_ratio": lengths[1] / max(lengths[0], 1e-9), "start": start, "goal": goal})
     return rows
+
+
+def paths_figure(rows: list[dict], path) -> None:
+    """The cost shading of turtlebot3's world with nav2's inflation cost and the two paths of its pair whose
+    clearance gained most: on the binary map and on the costed one."""
+    from tdp.plot import pyplot, save_figure
+
+    name, map_path = ROS_MAPS[0]
+    best = max((r for r in rows if r["map"] == name), key=lambda r: r["clearance_ratio"])
+    grid = tdp.load_map(map_path)
+    radius = ROBOT_RADIUS_M / grid.resolution
+    maps = {"path on the binary map": grid.inflate(radius),
+            "path with nav2's inflation cost": grid.inflate(radius, cost_scaling_factor=3.0, inflation_radius=1.05)}
+    binary, costed = maps.values()
+    rows_free, cols_free = np.nonzero(~binary.occupied)
+    top, bottom, left, right = rows_free.min() - 3, rows_free.max() + 4, cols_free.min() - 3, cols_free.max() + 4
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(6, 6))
+    shading = np.ma.masked_where(binary.occupied, costed.cost)
+    ax.imshow(binary.occupied, cmap="gray_r", vmin=0, vmax=1.6, interpolation="nearest")
+    image = ax.imshow(shading, cmap="YlOrRd", interpolation="nearest", alpha=0.8)
+    fig.colorbar(image, ax=ax, fraction=0.046, label="traversal cost (1: open ground)")
+    for (label, which), colour in zip(maps.items(), ("tab:blue", "black")):
+        field = tdp.DistanceField(which, tuple(best["goal"]))
+        field.converge()
+        route = np.array(field.path(tuple(best["start"])))
+        ax.plot(route[:, 1], route[:, 0], "-", color=colour, lw=2, label=label)
+    ax.set_xlim(left, right)
+    ax.set_ylim(bottom, top)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.legend(loc="lower left", fontsize=8)
+    ax.set_title(f"turtlebot3_world: clearance x{best['clearance_ratio']:.2f} at x{best['length_ratio']:.2f} the "
+                 "length", fontsize=9)
+    save_figure(fig, path)
 
 
 def figure(rows: list[dict], path) -> None:
@@ -170,8 +205,10 @@ def main() -> None:
         mine = [r for r in paths if r["map"] == name]
         print(f"{name}: mean clearance ratio {np.mean([r['clearance_ratio'] for r in mine]):.2f}, "
               f"mean length ratio {np.mean([r['length_ratio'] for r in mine]):.2f}")
-    save_results("costs-quick" if args.quick else "costs", {"rows": rows, "clearance": paths},
-                 lambda path: figure(rows, path))
+    written = save_results("costs-quick" if args.quick else "costs", {"rows": rows, "clearance": paths},
+                           lambda path: figure(rows, path))
+    paths_figure(paths, written.with_name(written.stem + "-paths.png"))
+    print(f"wrote {written.with_name(written.stem + '-paths.png')}")
 
 
 if __name__ == "__main__":

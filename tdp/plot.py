@@ -15,7 +15,7 @@ def pyplot():
     try:
         import matplotlib
     except ImportError:
-        raise ValueError("figures need matplotlib: pip install 'tdp[plot]'") from None
+        raise ValueError("figures need matplotlib: pip install 'tdp-planner[plot]'") from None
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
