@@ -207,8 +207,9 @@ def main() -> None:
               f"mean length ratio {np.mean([r['length_ratio'] for r in mine]):.2f}")
     written = save_results("costs-quick" if args.quick else "costs", {"rows": rows, "clearance": paths},
                            lambda path: figure(rows, path))
-    paths_figure(paths, written.with_name(written.stem + "-paths.png"))
-    print(f"wrote {written.with_name(written.stem + '-paths.png')}")
+    figure_path = written.with_name("costs-paths-quick.png" if args.quick else "costs-paths.png")
+    paths_figure(paths, figure_path)
+    print(f"wrote {figure_path}")
 
 
 if __name__ == "__main__":
