@@ -2,8 +2,9 @@
 graph: the same 4/8/16-neighbour moves, lengths and corner rule. Plain Python, a baseline for sweeps and benchmarks.
 
 The search runs from the goal back to the robot with the Euclidean heuristic (consistent: every move costs its
-Euclidean length). Map edits update the vertices whose edges they touch and repair the search; a moved goal
-starts a new search, as D* Lite has no notion of a moving goal.
+Euclidean length, or on a map with traversal costs at least that: L x (cost[u] + cost[v]) / 2 with costs >= 1).
+Map edits update the vertices whose edges they touch and repair the search; a moved goal starts a new search, as
+D* Lite has no notion of a moving goal.
 """
 from __future__ import annotations
 
@@ -34,8 +35,9 @@ class DStarLite:
     """A :class:`tdp.contract.Planner`: update_map, set_goal, move_robot, tick."""
 
     def __init__(self, occupied: np.ndarray, start: tuple[int, int], goal: tuple[int, int], neighbourhood: int = 16,
-                 corner_cutting: bool = False):
+                 corner_cutting: bool = False, cost: np.ndarray | None = None):
         self.occupied = np.array(occupied, bool)
+        self.cost = None if cost is None else np.asarray(cost, np.float64)  # a GridMap's costs, or None
         self.rows, self.cols = self.occupied.shape
         self.moves = stencil.moves(neighbourhood, corner_cutting)
         self.start = self.last = tuple(start)
@@ -58,8 +60,10 @@ class DStarLite:
 
     def _edges(self, cell):
         """(neighbour, cost) over the allowed moves from ``cell`` (the graph is symmetric)."""
-        if self._free(*cell):
-            yield from stencil.legal_moves(self.occupied, cell, self.moves)
+        if not self._free(*cell):
+            return
+        for neighbour, length in stencil.legal_moves(self.occupied, cell, self.moves):
+            yield neighbour, length if self.cost is None else length * (self.cost[cell] + self.cost[neighbour]) / 2
 
     # -- D* Lite -------------------------------------------------------------------------------------------------
     def _h(self, a, b) -> float:

@@ -51,3 +51,25 @@ def test_dstar_lite_stays_exact_while_the_robot_drives_through_changes():
             if result.next_cell is None:
                 break
             planner.move_robot(result.next_cell)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_dstar_lite_on_traversal_costs_equals_dijkstra_on_the_weighted_graph_through_changes(seed):
+    rng = np.random.default_rng(seed)
+    occupied = rng.random((15, 17)) < 0.2
+    cost = np.where(occupied, 1.0, 1.0 + 9.0 * rng.random(occupied.shape)).astype(np.float32)
+    start, goal = (0, 0), (14, 16)
+    occupied[start] = occupied[goal] = False
+    planner = DStarLite(occupied, start, goal, cost=cost)
+    for step in range(10):
+        if step % 3 == 2:
+            cells = np.argwhere(rng.random(occupied.shape) < 0.05)
+            cells = cells[(cells != planner.start).any(axis=1) & (cells != goal).any(axis=1)]
+            values = rng.random(len(cells)) < 0.7
+            occupied[cells[:, 0], cells[:, 1]] = values
+            planner.update_map(cells, values)
+        result = planner.tick()
+        assert planner.distance() == pytest.approx(distances_to(occupied, goal, 16, cost=cost)[planner.start])
+        if result.next_cell is None:
+            break
+        planner.move_robot(result.next_cell)

@@ -47,7 +47,7 @@ def _planner(kind: str, scenario, config: NavigatorConfig):
         return oracle(start_grid(scenario), scenario.start, scenario.goal, config)
     if kind == "dstar-lite":
         return DStarLite(scenario.occupancy(0), scenario.start, scenario.goal, config.neighbourhood,
-                         config.corner_cutting)
+                         config.corner_cutting, cost=scenario.grid.cost)
     planner = make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
     planner.setup()
     return planner
