@@ -29,6 +29,26 @@ def test_dstar_lite_distances_equal_dijkstra_through_changes(seed):
             assert planner.distance() == pytest.approx(distances_to(occupied, goal, neighbourhood)[start])
 
 
+def drive_checking_distances(planner: DStarLite, occupied: np.ndarray, rng, steps: int, edit_rate: float,
+                             cost=None) -> None:
+    """Drive ``planner``'s robot for ``steps`` ticks, editing a share ``edit_rate`` of the cells every third tick, and
+    check at every tick that the search's distance equals Dijkstra's (on the weighted graph when ``cost`` is
+    given)."""
+    for step in range(steps):
+        if step % 3 == 2:
+            cells = np.argwhere(rng.random(occupied.shape) < edit_rate)
+            cells = cells[(cells != planner.start).any(axis=1) & (cells != planner.goal).any(axis=1)]
+            values = rng.random(len(cells)) < 0.7
+            occupied[cells[:, 0], cells[:, 1]] = values
+            planner.update_map(cells, values)
+        result = planner.tick()
+        exact = distances_to(occupied, planner.goal, 16, cost=cost)[planner.start]
+        assert planner.distance() == pytest.approx(exact), step
+        if result.next_cell is None:
+            break
+        planner.move_robot(result.next_cell)
+
+
 def test_dstar_lite_stays_exact_while_the_robot_drives_through_changes():
     """Every tick of a drive with map changes on the way, the search's distance equals Dijkstra's (seed 63 once
     stopped early: two keys equal in exact arithmetic came out one rounding apart)."""
@@ -37,20 +57,7 @@ def test_dstar_lite_stays_exact_while_the_robot_drives_through_changes():
         occupied = rng.random((14, 16)) < 0.2
         goal = (13, 15)
         occupied[0, 0] = occupied[goal] = False
-        planner = DStarLite(occupied, (0, 0), goal)
-        for step in range(12):
-            if step % 3 == 2:
-                cells = np.argwhere(rng.random(occupied.shape) < 0.04)
-                cells = cells[(cells != planner.start).any(axis=1) & (cells != goal).any(axis=1)]
-                values = rng.random(len(cells)) < 0.7
-                occupied[cells[:, 0], cells[:, 1]] = values
-                planner.update_map(cells, values)
-            result = planner.tick()
-            exact = distances_to(occupied, goal, 16)[planner.start]
-            assert planner.distance() == pytest.approx(exact), (seed, step)
-            if result.next_cell is None:
-                break
-            planner.move_robot(result.next_cell)
+        drive_checking_distances(DStarLite(occupied, (0, 0), goal), occupied, rng, 12, edit_rate=0.04)
 
 
 @pytest.mark.parametrize("seed", range(4))
@@ -60,16 +67,4 @@ def test_dstar_lite_on_traversal_costs_equals_dijkstra_on_the_weighted_graph_thr
     cost = np.where(occupied, 1.0, 1.0 + 9.0 * rng.random(occupied.shape)).astype(np.float32)
     start, goal = (0, 0), (14, 16)
     occupied[start] = occupied[goal] = False
-    planner = DStarLite(occupied, start, goal, cost=cost)
-    for step in range(10):
-        if step % 3 == 2:
-            cells = np.argwhere(rng.random(occupied.shape) < 0.05)
-            cells = cells[(cells != planner.start).any(axis=1) & (cells != goal).any(axis=1)]
-            values = rng.random(len(cells)) < 0.7
-            occupied[cells[:, 0], cells[:, 1]] = values
-            planner.update_map(cells, values)
-        result = planner.tick()
-        assert planner.distance() == pytest.approx(distances_to(occupied, goal, 16, cost=cost)[planner.start])
-        if result.next_cell is None:
-            break
-        planner.move_robot(result.next_cell)
+    drive_checking_distances(DStarLite(occupied, start, goal, cost=cost), occupied, rng, 10, 0.05, cost)
