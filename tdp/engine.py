@@ -1748,10 +1748,13 @@ class Engine:
             centre = self.radius + PAD
             self._windows = _Layers(kernels(LANES), groups, (side, side), origins, (centre, centre), self.node_cap)
             self._layers.append(self._windows)
+        grids: dict[bool, np.ndarray] = {}  # the padded penalties by whether a kind is weighted, each built once
         for layers in self._layers:
-            grid_penalties = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
-            grid_penalties[PAD:-PAD, PAD:-PAD] = self._penalties(layers, self.occupied, slice(None))
-            layers.gather_penalties(grid_penalties)
+            weighted = self._weighted(layers)
+            if weighted not in grids:
+                grids[weighted] = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
+                grids[weighted][PAD:-PAD, PAD:-PAD] = self._penalties(layers, self.occupied, slice(None))
+            layers.gather_penalties(grids[weighted])
         self.reset()
 
     # -- state -------------------------------------------------------------------------------------------------
@@ -1880,10 +1883,14 @@ class Engine:
         for layers in kinds:
             layers.paint(cells, self._penalties(layers, occupied, (cells[:, 0], cells[:, 1])))
 
+    def _weighted(self, layers: "_Layers") -> bool:
+        """Whether a kind of layer weighs its moves by the map's costs: the goal layer on a map with costs."""
+        return layers is self._goal and self.cost is not None
+
     def _penalties(self, layers: "_Layers", occupied: np.ndarray, where) -> np.ndarray:
         """The penalties of the cells ``where`` selects (an index into the map) for a kind of layer, whose occupancy
         is ``occupied``: inf blocked; free 0, or the cell's cost for the weighted goal layer."""
-        free = 0.0 if layers is not self._goal or self.cost is None else self.cost[where]
+        free = self.cost[where] if self._weighted(layers) else 0.0
         return np.where(occupied, np.inf, free).astype(np.float32)
 
     def set_goal(self, goal: tuple[int, int]) -> None:

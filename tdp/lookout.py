@@ -13,7 +13,6 @@ from .engine import Engine
 from .predict import MotionPredictor
 
 
-
 class BoxLookout:
     """Tracks moving boxes for a :class:`tdp.Navigator` with ``predict_ticks`` or ``avoid_boxes``.
 
@@ -62,19 +61,20 @@ class BoxLookout:
         return bool(len(freed) or not already.all())
 
     def clear_move(self, robot: Cell, wanted: Cell | None, route: Callable[[int], list[Cell]],
-                   options: list[tuple[Cell, float]], values: Callable[[list[Cell]], np.ndarray]) -> Cell | None:
+                   legal_moves: Callable[[], list[tuple[Cell, float]]],
+                   values: Callable[[list[Cell]], np.ndarray]) -> Cell | None:
         """The move to make given the cells the tracked boxes are predicted to enter: ``wanted`` if the robot meets
         no box on its next ``meet_ticks`` moves (:meth:`_meets_a_box`; ``route(k)``: the robot's next k cells);
-        else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of
-        ``options`` (the legal moves: cell, length) that no box enters at the next tick - one that none enters within
-        ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus the move's
-        length among them; ``wanted`` when every move is entered at the next tick."""
+        else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of the
+        ``legal_moves()`` (cell, length; asked for only then) that no box enters at the next tick - one that none
+        enters within ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus
+        the move's length among them; ``wanted`` when every move is entered at the next tick."""
         arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks)
         if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
             return wanted
         if arrivals.get(robot, math.inf) > 1:
             return None
-        options = [(cell, cost) for cell, cost in options if arrivals.get(cell, math.inf) > 1]
+        options = [(cell, cost) for cell, cost in legal_moves() if arrivals.get(cell, math.inf) > 1]
         if not options:
             return wanted
         layer = values([cell for cell, _ in options])

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -102,12 +103,9 @@ class Navigator:
     # -- the tick ----------------------------------------------------------------------------------------------
     def tick(self) -> TickResult:
         """Observe (K DP iterations with the monitor after each), decide (the backup rules), move; returns where to
-        move and the seconds each phase took.
-
-        The mode is DP or BACKUP while the robot moves, WAIT while it has nowhere to go: the robot follows the goal
-        layer when the node graph has no route (the search is retried every tick) and waits only when neither
-        offers a move (ARCHITECTURE §5.5); YIELD when it stays for a box predicted to cross its way.
-        """
+        move and the seconds each phase took. The mode is DP or BACKUP while the robot moves, WAIT while it has
+        nowhere to go: with no route in the node graph the robot follows the goal layer (searching again every tick)
+        and waits only when neither offers a move (ARCHITECTURE §5.5); YIELD when it stays for a box's way."""
         clock = PhaseClock("dp", "monitor", "search")
         result = self._observe(clock)
         with clock("search"):
@@ -163,8 +161,8 @@ class Navigator:
             result.switched_back = True
         elif step is not Step.KEEP:
             self._search(result, step)
-        if self.backup.follow is not Follow.GOAL and self.config.switch_back == "evidence" and \
-                self._goal_layer_beats_backup(settled_route=following_backup):
+        evidence = self.backup.follow is not Follow.GOAL and self.config.switch_back == "evidence"
+        if evidence and self._goal_layer_beats_backup(settled_route=following_backup):
             result.switched_back = following_backup
             self.backup = switched_back(self.backup)
 
@@ -190,8 +188,8 @@ class Navigator:
         result.subgoal = self.backup.subgoal
         if self.config.avoid_boxes and moving:
             with clock("predict"):
-                options = self.moves.legal(self.engine.occupied, self.robot)
-                result.next_cell = self.lookout.clear_move(self.robot, result.next_cell, self.route, options,
+                legal_moves = partial(self.moves.legal, self.engine.occupied, self.robot)
+                result.next_cell = self.lookout.clear_move(self.robot, result.next_cell, self.route, legal_moves,
                                                            self._followed_values)
                 if result.next_cell is None and self.robot != self.goal:
                     result.mode = Mode.YIELD
@@ -215,6 +213,8 @@ class Navigator:
         if chain is None:
             return False
         steps = np.hypot(*np.diff(np.array(chain), axis=0).T)
+        if steps.sum() > budget:  # the length alone decides: no sample of the values (a kernel launch)
+            return False
         values = self.engine.sample(chain[:cells_near(steps, self.spacing) + 1])[:, 0].astype(np.float64)
         return goal_route_wins(steps, values, budget, settled_route, self.config.rise, self.config.settled_cells)
 
