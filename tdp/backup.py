@@ -3,9 +3,13 @@ the node graph for a backup route, which subgoal to follow, when to search again
 goal layer.
 
 The rules are pure functions over a frozen :class:`BackupState` and readings the caller hands in (whether a relevant
-blockage was detected, a layer's value at the robot, a :class:`~tdp.nodes.NodeGraph`, the length a layer really
+blockage was detected, a layer's value at the robot, a :class:`~tdp.nodes.NodeGraph`, the cost a layer really
 drives along an edge), so a test can drive them with hand-built numbers. :class:`tdp.Navigator` reads the engine and
 applies them once a tick.
+
+Costs are in the goal layer's units: cells on a binary map; on a map with traversal costs, the moves' costs, while
+node layers measure cells (connectivity, for the blockage test) and their readings are lower bounds of a cost until
+an edge is driven (ARCHITECTURE §5.5).
 """
 from __future__ import annotations
 
@@ -49,8 +53,8 @@ class Step(Enum):
 @dataclass(frozen=True)
 class Backup:
     """A backup route found in the node graph: ``path`` the vertex ids R, Q1, ..., G; ``cost`` its length ||Path||
-    (cells); ``subgoal`` the vertex the robot heads for; ``cost_to_goal`` the cost (cells) from each vertex of the
-    path to G along it."""
+    (the goal layer's units); ``subgoal`` the vertex the robot heads for; ``cost_to_goal`` the cost from each vertex
+    of the path to G along it."""
 
     path: tuple[int, ...]
     cost: float
@@ -61,8 +65,9 @@ class Backup:
 @dataclass(frozen=True)
 class BackupState:
     """What the backup rules remember between ticks: the layer followed, the backup route followed (None unless
-    ``follow`` is BACKUP), ||Path|| of the last backup (DP iterations to wait before switching back) and the DP
-    iterations since the last relevant detection."""
+    ``follow`` is BACKUP), ||Path|| of the last backup (DP iterations to wait before switching back; a cost is at
+    least the path's cells, so on a map with costs the wait is longer than the news needs) and the DP iterations
+    since the last relevant detection."""
 
     follow: Follow = Follow.GOAL
     route: Backup | None = None
@@ -116,8 +121,8 @@ def iterated(state: BackupState, iterations: int) -> BackupState:
 
 
 def cost_from_robot(state: BackupState, subgoal_at_robot: float) -> float:
-    """The backup's estimated cost (cells) from R: the subgoal's layer at R plus the rest of the path (inf unless a
-    backup is followed)."""
+    """The backup's estimated cost from R: the subgoal's layer at R plus the rest of the path (inf unless a backup
+    is followed). A node subgoal's layer measures cells: on a map with costs the first leg is a lower bound."""
     if state.follow is not Follow.BACKUP:
         return math.inf
     return subgoal_at_robot + state.route.cost_to_goal[state.route.subgoal]
@@ -143,8 +148,8 @@ def plan_backup(graph: NodeGraph, driven_length: Callable[[int, int], float]) ->
 
 def driven_search(graph: NodeGraph, driven_length: Callable[[int, int], float]) -> tuple[list[int], float] | None:
     """Uniform-cost search R -> G over edges the layers really drive (lazily, ARCHITECTURE §5.5): each edge a-b of a
-    found path is reweighted once to ``max(weight, driven_length(a, b))`` (cells; inf drops it: b's layer does not
-    lead from a's cell to b yet), and the search runs again until every edge of its path has been driven. Returns
+    found path is reweighted once to ``max(weight, driven_length(a, b))`` (inf drops it: b's layer does not lead
+    from a's cell to b yet; readings are lower bounds of driven costs, so the last path is the cheapest driven one), and the search runs again until every edge of its path has been driven. Returns
     (path, cost) or None. Reweights ``graph`` in place."""
     driven: set[tuple[int, int]] = set()
     while True:
@@ -166,9 +171,9 @@ def cells_near(steps: np.ndarray, spacing: float) -> int:
 
 def goal_route_wins(steps: np.ndarray, values: np.ndarray, budget: float, settled_route: bool, rise: float,
                     settled_cells: float) -> bool:
-    """Whether the goal layer's route from R (a chain of successors that reaches G; ``steps`` its moves' lengths,
-    cells) beats a backup whose estimated cost from R, with the slack, is ``budget`` (cells) - the evidence test of
-    ``switch_back="evidence"``.
+    """Whether the goal layer's route from R (a chain of successors that reaches G; ``steps`` its moves' costs in
+    the goal layer's units) beats a backup whose estimated cost from R, with the slack, is ``budget`` - the
+    evidence test of ``switch_back="evidence"``.
 
     ``values`` is the goal layer along the chain's first :func:`cells_near` moves, R first. The route must be no
     longer than ``budget`` and settled near the robot: each value equal to its successor's plus the move within

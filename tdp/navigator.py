@@ -27,7 +27,7 @@ from .grid import GridMap
 from .lookout import BoxLookout
 from .nodes import Vertices, place_nodes
 from .readings import NodeReadings
-from .stencil import RobotMoves
+from .stencil import RobotMoves, chain_costs
 
 
 
@@ -212,11 +212,12 @@ class Navigator:
         chain = self._goal_chain(max_steps)
         if chain is None:
             return False
-        steps = np.hypot(*np.diff(np.array(chain), axis=0).T)
-        if steps.sum() > budget:  # the length alone decides: no sample of the values (a kernel launch)
+        costs = chain_costs(chain, self.grid.cost)
+        if costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
             return False
-        values = self.engine.sample(chain[:cells_near(steps, self.spacing) + 1])[:, 0].astype(np.float64)
-        return goal_route_wins(steps, values, budget, settled_route, self.config.rise, self.config.settled_cells)
+        near = cells_near(chain_costs(chain), self.spacing)
+        values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
+        return goal_route_wins(costs, values, budget, settled_route, self.config.rise, self.config.settled_cells)
 
     def _subgoal_at_robot(self) -> float:
         """The subgoal's layer at R while a backup is followed (inf otherwise)."""
@@ -291,9 +292,6 @@ def _check(grid: GridMap, config: NavigatorConfig) -> None:
                          "tdp.ExactPlanner, or tdp.make_planner for whichever the config names")
     if not isinstance(grid, GridMap):
         raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
-    if config.accelerating and grid.cost is not None:
-        raise ValueError("accelerating nodes do not plan on a grid with costs yet (their backup rules compare the "
-                         "goal layer with node layers in cells); use planner 'exact' or 'plain-dp'")
 
 
 def _lattice(grid: GridMap, config: NavigatorConfig) -> tuple[np.ndarray, float]:

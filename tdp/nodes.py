@@ -103,7 +103,9 @@ class NodeGraph:
     the goal layer at cell k, column 1 + j node j's layer at cell k. Vertex ids: nodes 0..n-1, R = n, G = n + 1.
     Pair weight D(Qa, Qb) = max(layer_b[Qa], layer_a[Qb]) (conservative while news travels); robot and goal edges
     are layer_j[R] and layer_j[G]; R-G is direct when layer_0[R] < DmaxQ and ``direct_goal`` (the caller vouches
-    that the goal layer's value at R is a real route, not stale). An edge exists where its weight < DmaxQ.
+    that the goal layer's value at R is a real route, not stale). An edge exists where its reading < DmaxQ (the
+    vision; node layers measure cells even on a map with traversal costs, the goal layer the costs), and keeps the
+    weight :meth:`reweight` gives it (the cost a layer really drives, which costs may raise past DmaxQ).
     Inactive nodes (covered by an obstacle) have no edges; ``blocked`` pairs (the monitor's verdict: their distance
     is still rising after a cut, so their weight is stale) have none either, and neither has the edge from R (or G)
     to a node j blocked from a node i that R (or G) reaches first: R's reading of j then most likely went through
@@ -128,6 +130,10 @@ class NodeGraph:
         inactive = ~self.active
         self.robot[inactive] = np.inf
         self.goal[inactive] = np.inf
+        for weights in (self.pairs, self.robot, self.goal):  # eq. 14: an edge only within vision
+            weights[weights >= self.dmax_q] = np.inf
+        if self.robot_goal >= self.dmax_q:
+            self.robot_goal = np.inf
 
     @staticmethod
     def _cut_off(readings: np.ndarray, blocked: np.ndarray) -> np.ndarray:
@@ -154,9 +160,9 @@ class NodeGraph:
         return weights
 
     def neighbours(self, vertex: int):
-        """(neighbour, weight) pairs of ``vertex`` over the edges with weight < DmaxQ."""
+        """(neighbour, weight) pairs of ``vertex`` over its edges."""
         weights = self._weights(vertex)
-        for other in np.flatnonzero(weights < self.dmax_q):
+        for other in np.flatnonzero(np.isfinite(weights)):
             yield int(other), float(weights[other])
 
     def at_robot(self, vertex: int) -> float:
@@ -165,11 +171,11 @@ class NodeGraph:
 
     def weight(self, a: int, b: int) -> float:
         """The weight of edge a-b (vertex ids), inf if there is none."""
-        value = float(self._weights(a)[b])
-        return value if value < self.dmax_q else np.inf
+        return float(self._weights(a)[b])
 
     def reweight(self, a: int, b: int, weight: float) -> None:
-        """Set the weight of edge a-b (vertex ids, either order); inf, or DmaxQ and over, drops the edge."""
+        """Set the weight of edge a-b (vertex ids, either order; the goal layer's units, which may exceed DmaxQ on
+        a map with traversal costs); inf drops the edge."""
         r, g = self.robot_id, self.goal_id
         if {a, b} == {r, g}:
             self.robot_goal = weight
@@ -182,7 +188,7 @@ class NodeGraph:
 
     def edges(self) -> list[tuple[int, int, float]]:
         """Every node-node edge (a < b, weight) of the current graph."""
-        a, b = np.nonzero(np.triu(self.pairs < self.dmax_q, k=1))
+        a, b = np.nonzero(np.triu(np.isfinite(self.pairs), k=1))
         return [(int(i), int(j), float(self.pairs[i, j])) for i, j in zip(a, b)]
 
 

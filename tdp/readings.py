@@ -10,6 +10,7 @@ from .blockage import BlockageMonitor
 from .checks import Cell
 from .engine import Engine
 from .nodes import NodeGraph, Vertices, pair_distances
+from .stencil import chain_costs
 
 
 
@@ -86,10 +87,13 @@ class NodeReadings:
         return chain
 
     def driven_length(self, a: int, b: int, robot: Cell, goal: Cell) -> float:
-        """The length (cells) of the way from graph vertex ``a`` to ``b`` that b's layer really drives: its
-        successors from a's cell, if they reach b within DmaxQ; else inf."""
+        """The cost of the way from graph vertex ``a`` to ``b`` that b's layer really drives - its successors from
+        a's cell, if they reach b in less than DmaxQ cells (b's vision); else inf - in the goal layer's units (cells;
+        on a map with traversal costs, the moves' costs)."""
         chain = self.real_chain(self.vertices.cell(a, robot, goal), b, math.ceil(self.dmax_q) + 1, robot, goal)
-        return math.inf if chain is None else float(np.hypot(*np.diff(np.array(chain), axis=0).T).sum())
+        if chain is None or chain_costs(chain).sum() >= self.dmax_q:
+            return math.inf
+        return float(chain_costs(chain, self.engine.cost).sum())
 
     def _state(self, robot: tuple[int, int], goal: tuple[int, int]) -> tuple:
         """What the layers read at the graph's cells depend on: the iteration, R, G and the edits so far."""

@@ -35,6 +35,17 @@ class Move(NamedTuple):
     crossed: tuple[tuple[int, int], ...]
 
 
+def chain_costs(chain, cost: np.ndarray | None = None) -> np.ndarray:
+    """The cost of each move of ``chain`` (cells, each one move from the last): its length L (cells), or on a map
+    with traversal costs ``cost`` (H, W) L x (cost[u] + cost[v]) / 2 - the units of the goal layer's values."""
+    cells = np.asarray(chain)
+    lengths = np.hypot(*np.diff(cells, axis=0).T)
+    if cost is None:
+        return lengths
+    at = cost[tuple(cells.T)].astype(np.float64)
+    return lengths * (at[:-1] + at[1:]) / 2
+
+
 def _sign(x: int) -> int:
     return (x > 0) - (x < 0)
 

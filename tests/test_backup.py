@@ -122,6 +122,12 @@ def test_driven_search_reweights_each_leg_by_the_length_driven_and_finds_none_wh
     assert plan_backup(graph_from(R_READS, G_READS, ROW), lambda a, b: math.inf) is None
 
 
+def test_driven_search_keeps_driven_costs_past_dmaxq_as_on_a_map_with_traversal_costs():
+    graph = graph_from(R_READS, G_READS, ROW)  # every driven cost 3x the cells read: ground of cost 3
+    path, cost = driven_search(graph, lambda a, b: 3 * graph.weight(a, b))
+    assert path == [3, 0, 1, 2, 4] and cost == pytest.approx(39.0)  # 9 + 12 + 12 + 6, two legs past DmaxQ (10)
+
+
 def test_cells_near_counts_the_moves_to_cover_a_distance():
     steps = np.array([1.0, math.sqrt(2), 1.0, 1.0, math.sqrt(5)])
     assert cells_near(steps, 1.0) == 1

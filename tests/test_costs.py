@@ -2,6 +2,7 @@
 scipy's Dijkstra on the weighted graph (tests/reference.py) for every stencil and corner rule, from scratch, after
 random edits, focused and by synchronous iterations; a map whose costs are all 1 gives the binary map's values bit for
 bit."""
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -164,16 +165,33 @@ def test_costs_on_obstacles_are_ignored_and_inflating_keeps_the_costs():
     assert np.array_equal(inflated.cost[free], grid.cost[free]) and (inflated.cost[~free] == 1).all()
 
 
-def test_plain_dp_plans_on_costs_and_accelerating_nodes_refuse_them_clearly():
+@pytest.mark.parametrize("planner", ["plain-dp", "accelerating"])
+def test_the_navigators_goal_layer_plans_on_costs(planner):
     occupied = np.zeros((21, 21), bool)
     cost = np.ones((21, 21))
     cost[8:13, 3:18] = 20.0
     grid = tdp.GridMap(occupied, cost=cost)
-    plain = tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner="plain-dp", updates_per_move=50))
-    plain.setup()
-    assert max(grid.cost[cell] for cell in plain.current_path()) < 20.0
-    with pytest.raises(ValueError, match="costs"):
-        tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner="accelerating"))
+    navigator = tdp.Navigator(grid, (10, 0), (10, 20), tdp.NavigatorConfig(planner=planner, updates_per_move=50))
+    navigator.setup()
+    assert max(grid.cost[cell] for cell in navigator.current_path()) < 20.0
+
+
+def test_a_chains_move_costs_are_lengths_on_a_binary_map_and_weighted_by_the_cells_costs_otherwise():
+    chain = [(0, 0), (0, 1), (1, 2), (3, 3)]
+    cost = np.array([[1.0, 3.0, 1.0, 1.0], [1.0, 1.0, 5.0, 1.0], [1.0] * 4, [1.0, 1.0, 1.0, 2.0]])
+    assert tdp.stencil.chain_costs(chain) == pytest.approx([1.0, np.sqrt(2), np.sqrt(5)])
+    assert tdp.stencil.chain_costs(chain, cost) == pytest.approx([2.0, 4 * np.sqrt(2), 3.5 * np.sqrt(5)])
+
+
+def test_accelerating_nodes_detect_back_up_and_reach_on_a_costed_world_with_the_other_planners():
+    world = tdp.random_worlds.make_world("rooms", 100, seed=0)
+    costed = dataclasses.replace(world, grid=world.grid.inflate(0, cost_scaling_factor=3.0, inflation_radius=0.8))
+    episodes = {planner: tdp.simulate(costed, tdp.NavigatorConfig(planner=planner))
+                for planner in ("exact", "plain-dp", "accelerating")}
+    for episode in episodes.values():
+        assert episode.reached and episode.collisions == 0
+    accelerating = episodes["accelerating"]
+    assert accelerating.detections and accelerating.backups  # the node layers' rules ran on the costed map
 
 
 def test_nav2_inflation_costs_decay_from_the_inscribed_radius_as_nav2_computes_them():
@@ -210,16 +228,15 @@ def costed_world(tmp_path, extra: str = "inflation_radius: 0.6"):
     return path
 
 
-def test_a_world_file_with_inflation_costs_plans_on_them_at_grid_level_and_in_pybullet(tmp_path):
+@pytest.mark.parametrize("planner", ["exact", "plain-dp", "accelerating"])
+def test_a_world_file_with_inflation_costs_plans_on_them_at_grid_level_and_in_pybullet(tmp_path, planner):
     from sim.episode import run_episode
 
     world = tdp.load_world(costed_world(tmp_path))
     assert world.grid.cost is not None and world.grid.cost.max() > 1
-    episode = tdp.simulate(world, tdp.NavigatorConfig())
+    episode = tdp.simulate(world, tdp.NavigatorConfig(planner=planner))
     assert episode.reached and episode.collisions == 0
-    with pytest.raises(ValueError, match="costs"):
-        tdp.simulate(world, tdp.NavigatorConfig(planner="accelerating"))
-    metrics = run_episode(world, tdp.NavigatorConfig())
+    metrics = run_episode(world, tdp.NavigatorConfig(planner=planner))
     assert metrics["reached"] and metrics["contacts"] == 0
 
 

@@ -219,19 +219,20 @@ def test_uniform_cost_search_agrees_with_brute_force(n, seed, density):
         assert sum(weights[a, b] for a, b in zip(path, path[1:])) == pytest.approx(cost)
 
 
-def test_reweight_sets_an_edge_both_ways_and_drops_it_at_dmaxq():
+def test_reweight_sets_an_edge_both_ways_drops_it_at_inf_and_readings_past_dmaxq_make_no_edge():
     samples = np.array([[5.0, 0.0, 3.0], [4.0, 3.0, 0.0], [9.0, 2.0, 6.0], [0.0, 7.0, 5.0]])  # Q0, Q1, R, G
     graph = NodeGraph(samples, dmax_q=8.0, active=np.ones(2, bool))
     r, g = graph.robot_id, graph.goal_id
     assert graph.weight(0, 1) == 3.0 and graph.weight(r, 0) == 2.0 and graph.weight(1, g) == 5.0
+    assert math.isinf(graph.weight(r, g))  # the goal layer reads 9 at R: out of vision (eq. 14)
     graph.reweight(1, 0, 4.5)
     graph.reweight(0, r, 7.0)
     graph.reweight(g, 1, np.inf)
-    graph.reweight(r, g, 8.0)
+    graph.reweight(g, 0, 8.5)  # a driven cost on a map with costs may exceed DmaxQ: the edge stays
     assert graph.weight(0, 1) == graph.weight(1, 0) == 4.5
     assert graph.weight(r, 0) == graph.weight(0, r) == 7.0
-    assert math.isinf(graph.weight(1, g)) and math.isinf(graph.weight(r, g))
-    assert sorted(graph.neighbours(g)) == [(0, 7.0)]
+    assert math.isinf(graph.weight(1, g))
+    assert sorted(graph.neighbours(g)) == [(0, 8.5)]
 
 
 def test_lattice_placement_rules():
