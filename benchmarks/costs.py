@@ -137,7 +137,7 @@ def clearance(quick: bool) -> list[dict]:
 def paths_figure(rows: list[dict], path) -> None:
     """The cost shading of turtlebot3's world with nav2's inflation cost and the two paths of its pair whose
     clearance gained most: on the binary map and on the costed one."""
-    from tdp.plot import pyplot, save_figure
+    from tdp.plot import cost_bar, draw_map, pyplot, save_figure
 
     name, map_path = ROS_MAPS[0]
     best = max((r for r in rows if r["map"] == name), key=lambda r: r["clearance_ratio"])
@@ -150,10 +150,7 @@ def paths_figure(rows: list[dict], path) -> None:
     top, bottom, left, right = rows_free.min() - 3, rows_free.max() + 4, cols_free.min() - 3, cols_free.max() + 4
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 6))
-    shading = np.ma.masked_where(binary.occupied, costed.cost)
-    ax.imshow(binary.occupied, cmap="gray_r", vmin=0, vmax=1.6, interpolation="nearest")
-    image = ax.imshow(shading, cmap="YlOrRd", interpolation="nearest", alpha=0.8)
-    fig.colorbar(image, ax=ax, fraction=0.046, label="traversal cost (1: open ground)")
+    cost_bar(fig, ax, draw_map(ax, binary.occupied, costed.cost))
     for (label, which), colour in zip(maps.items(), ("tab:blue", "black")):
         field = tdp.DistanceField(which, tuple(best["goal"]))
         field.converge()
@@ -161,8 +158,6 @@ def paths_figure(rows: list[dict], path) -> None:
         ax.plot(route[:, 1], route[:, 0], "-", color=colour, lw=2, label=label)
     ax.set_xlim(left, right)
     ax.set_ylim(bottom, top)
-    ax.set_xticks([])
-    ax.set_yticks([])
     ax.legend(loc="lower left", fontsize=8)
     ax.set_title(f"turtlebot3_world: clearance x{best['clearance_ratio']:.2f} at x{best['length_ratio']:.2f} the "
                  "length", fontsize=9)

@@ -7,7 +7,7 @@ import numpy as np
 
 import tdp
 from tdp.config import planner_label
-from tdp.plot import MODE_COLOURS, box_patch, pyplot, draw_map, save_figure
+from tdp.plot import MODE_COLOURS, box_patch, cost_bar, draw_map, pyplot, save_figure
 
 
 def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
@@ -19,7 +19,7 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
         return np.asarray(x) / cell - 0.5, rows - np.asarray(y) / cell - 0.5
 
     fig, ax = plt.subplots(figsize=(7, 7.4))
-    draw_map(ax, scenario.grid.occupied)
+    cost_bar(fig, ax, draw_map(ax, scenario.grid.occupied, scenario.grid.cost))
     nodes = np.array(metrics["nodes"]).reshape(-1, 2)
     if len(nodes):
         ax.plot(nodes[:, 1], nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=6, label="accelerating nodes")

@@ -57,11 +57,11 @@ def run(args: argparse.Namespace) -> int:
 def plan(args: argparse.Namespace) -> int:
     """Plan on any loadable map: print the distance and path length, write a PNG of the path."""
     import tdp
-    from tdp.cli import output_folder
+    from tdp.cli import map_from, output_folder
     from tdp.plot import save_path_figure
 
     out = output_folder(args.out)
-    grid = tdp.load_map(args.map, unknown_is_free=args.unknown_free)
+    grid = map_from(args, unknown_is_free=args.unknown_free)
     start = grid.check_free_cell(tuple(args.start), "--start")
     field = tdp.DistanceField(grid, args.goal, neighbourhood=args.neighbourhood, corner_cutting=args.corner_cutting)
     began = time.perf_counter()
@@ -75,8 +75,12 @@ def plan(args: argparse.Namespace) -> int:
         print(f"goal {tuple(args.goal)} is not reachable from {start}")
         return 1
     length = sum(math.dist(a, b) for a, b in zip(path, path[1:]))
-    print(f"distance from {start} to {tuple(args.goal)}: {distance:.4f} cells "
-          f"({distance * grid.resolution:.3f} m); path: {len(path)} cells, length {length:.4f}")
+    if grid.cost is None:
+        print(f"distance from {start} to {tuple(args.goal)}: {distance:.4f} cells "
+              f"({distance * grid.resolution:.3f} m); path: {len(path)} cells, length {length:.4f}")
+    else:
+        print(f"cost from {start} to {tuple(args.goal)}: {distance:.4f} (cells x traversal cost); path: "
+              f"{len(path)} cells, length {length:.4f} cells ({length * grid.resolution:.3f} m)")
     title = f"{Path(args.map).name}: {args.neighbourhood}-neighbour, length {length:.2f} cells"
     figure = save_path_figure(grid, path, out / "plan.png", title, field.distances())
     print(f"figure: {figure}")
@@ -115,7 +119,7 @@ def sweep(args: argparse.Namespace) -> int:
 
 
 def parser() -> argparse.ArgumentParser:
-    from tdp.cli import add_planner_argument, add_world_arguments
+    from tdp.cli import add_cost_arguments, add_planner_argument, add_world_arguments
 
     main = argparse.ArgumentParser(prog="python -m tdp", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -148,6 +152,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--neighbourhood", type=int, default=16, choices=(4, 8, 16))
     p.add_argument("--corner-cutting", action="store_true", help="allow diagonal moves through corners")
     p.add_argument("--unknown-free", action="store_true", help="ROS maps: treat unknown cells as free")
+    add_cost_arguments(p)
     p.add_argument("--out", default="out", help="folder for the figure (default: out)")
     p.set_defaults(run=plan)
     s = commands.add_parser("sweep", help="run a sweep spec: many episodes, tables and a figure")

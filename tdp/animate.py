@@ -66,7 +66,7 @@ class _Panel:
         self.trajectory = np.array(episode.trajectory, float)
         self.modes = list(episode.modes)
         self.target = [tuple(t) for t in _target_path(scenario, episode)]
-        draw_map(ax, scenario.grid.occupied)
+        draw_map(ax, scenario.grid.occupied, scenario.grid.cost)
         ax.set_title(planner_label(episode.config), fontsize=9)
         if len(self.nodes):
             ax.plot(self.nodes[:, 1], self.nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=4)

@@ -38,6 +38,29 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     quick.add_argument("--boxes", type=int, default=3, help="shuttling boxes (default 3)")
     quick.add_argument("--seed", type=int, default=0, help="seed of the boxes (default 0)")
     quick.add_argument("--blockage", action="store_true", help="a box appears in a narrow place of the route")
+    add_cost_arguments(quick)
+
+
+def add_cost_arguments(group) -> None:
+    """Traversal costs for a map file, as nav2 makes them: ``--cost-scaling-factor`` and ``--inflation-radius``
+    (the inflation layer's cost around obstacles) and ``--graded`` (a ROS scale or raw map's values as costs)."""
+    group.add_argument("--cost-scaling-factor", type=float, default=None, metavar="K",
+                       help="nav2's inflation cost around obstacles: decay per metre (with --inflation-radius)")
+    group.add_argument("--inflation-radius", type=float, default=None, metavar="M",
+                       help="nav2's inflation cost: metres from obstacles (with --cost-scaling-factor)")
+    group.add_argument("--graded", action="store_true",
+                       help="ROS scale/raw maps: graded values as costs (nav2's trinary_costmap: false)")
+
+
+def map_from(args: argparse.Namespace, unknown_is_free: bool = False):
+    """The GridMap of ``args.map`` with the costs :func:`add_cost_arguments` asks for."""
+    import tdp
+
+    inflation = (args.cost_scaling_factor, args.inflation_radius)
+    if (inflation[0] is None) != (inflation[1] is None):
+        raise ValueError("--cost-scaling-factor and --inflation-radius go together (nav2's inflation layer)")
+    return tdp.load_map(args.map, unknown_is_free=unknown_is_free, trinary_costmap=not args.graded,
+                        cost_scaling_factor=inflation[0], inflation_radius=inflation[1])
 
 
 def add_planner_argument(parser: argparse.ArgumentParser) -> None:
@@ -60,7 +83,7 @@ def world_from(args: argparse.Namespace):
             raise ValueError("--map needs --start ROW COL and --goal ROW COL")
         if args.boxes < 0 or args.seed < 0:
             raise ValueError(f"--boxes and --seed must be >= 0, got {args.boxes} and {args.seed}")
-        return boxes_on_map(tdp.load_map(args.map), tuple(args.start), tuple(args.goal), args.boxes, args.seed,
+        return boxes_on_map(map_from(args), tuple(args.start), tuple(args.goal), args.boxes, args.seed,
                             args.blockage)
     return tdp.scenarios.get(args.scenario)
 

@@ -176,6 +176,15 @@ def costmap_grid(costmap: np.ndarray, resolution: float = 1.0, origin: tuple[flo
     return GridMap(occupied, resolution, origin, costmap_cost(np.where(costmap > 252, 0, costmap)))
 
 
+def occupancy_costmap(values: np.ndarray) -> np.ndarray:
+    """nav2 costmap values (uint8, 0-255) of occupancy values (-1 unknown, 0-100, as map_server publishes them) as
+    nav2's static layer reads them with ``trinary_costmap: false`` and its default ``lethal_threshold`` of 100:
+    unknown 255, 100 lethal (254), v of 0-99 the truncated v / 100 x 254 (0-251)."""
+    values = np.asarray(values, np.int16)
+    scaled = np.trunc(np.clip(values, 0, 100) / 100.0 * 254.0)
+    return np.where(values < 0, 255, np.where(values >= 100, 254, scaled)).astype(np.uint8)
+
+
 def _checked_cost(cost, occupied: np.ndarray) -> np.ndarray:
     """``cost`` as a read-only float32 array, 1 on obstacles, or a ValueError naming what is wrong."""
     if not isinstance(cost, np.ndarray) or not np.issubdtype(cost.dtype, np.floating):
@@ -221,20 +230,41 @@ class Problem(NamedTuple):
 
 
 # --------------------------------------------------------------------------------------------------------- loading
-def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: float = 0.5) -> GridMap:
+def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: float = 0.5,
+             trinary_costmap: bool = True, cost_scaling_factor: float | None = None,
+             inflation_radius: float | None = None) -> GridMap:
     """Load a MovingAI ``.map``, a ROS map_server ``.yaml`` or an image, chosen by the file's suffix.
 
     ``unknown_is_free`` applies to ROS maps (unknown cells are obstacles by default); ``threshold`` to plain
-    images (a pixel darker than ``threshold`` of full brightness is an obstacle).
+    images (a pixel darker than ``threshold`` of full brightness is an obstacle). ``trinary_costmap=False`` reads a
+    ROS map's graded values as nav2's static layer does with that parameter (:func:`occupancy_costmap`), into
+    traversal costs (:func:`costmap_cost`): a ``scale`` or ``raw`` map's 1-99 become costs instead of unknown.
+    ``cost_scaling_factor`` (per metre) and ``inflation_radius`` (metres), together, add nav2's inflation cost
+    around the obstacles (:meth:`GridMap.inflate` without growing them).
+
+    Raises:
+        FileNotFoundError: no such file (or a ROS map's image).
+        ValueError: an unknown format, a malformed file, ``trinary_costmap=False`` for a map that is not ROS's,
+            one of the two inflation parameters without the other.
     """
-    path = Path(path)
+    grid = _load(Path(path), unknown_is_free, threshold, trinary_costmap)
+    if cost_scaling_factor is None and inflation_radius is None:
+        return grid
+    return grid.inflate(0, cost_scaling_factor=cost_scaling_factor, inflation_radius=inflation_radius)
+
+
+def _load(path: Path, unknown_is_free: bool, threshold: float, trinary_costmap: bool) -> GridMap:
+    """The map file at ``path`` by its suffix (see :func:`load_map`)."""
     suffix = path.suffix.lower()
     if not path.is_file():
         raise FileNotFoundError(f"map file not found: {path}")
+    if suffix in (".yaml", ".yml"):
+        return _load_ros(path, unknown_is_free, trinary_costmap)
+    if not trinary_costmap:
+        raise ValueError(f"{path}: trinary_costmap=False reads a ROS map_server map's graded values; a {suffix!r} "
+                         "file has none")
     if suffix == ".map":
         return _load_movingai(path)
-    if suffix in (".yaml", ".yml"):
-        return _load_ros(path, unknown_is_free)
     if suffix in IMAGE_SUFFIXES:
         return _load_image(path, threshold)
     raise ValueError(f"{path}: unknown map format {suffix!r}; expected .map, .yaml or an image "
@@ -382,8 +412,9 @@ def _rgba(path: Path, image: Image.Image) -> np.ndarray:
     return np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
 
 
-def _load_ros(path: Path, unknown_is_free: bool) -> GridMap:
-    """ROS map_server YAML + image, following nav2's map_io: trinary, scale and raw modes, ``negate``."""
+def _load_ros(path: Path, unknown_is_free: bool, trinary_costmap: bool) -> GridMap:
+    """ROS map_server YAML + image, following nav2's map_io: trinary, scale and raw modes, ``negate``; graded
+    values as costs unless ``trinary_costmap``."""
     meta = _read_ros_yaml(path)
     image_path = Path(meta["image"])
     if not image_path.is_absolute():
@@ -391,6 +422,9 @@ def _load_ros(path: Path, unknown_is_free: bool) -> GridMap:
     if not image_path.is_file():
         raise FileNotFoundError(f"{path}: image {meta['image']!r} not found (looked at {image_path})")
     values = ros_occupancy(image_path, meta["mode"], meta["negate"], meta["occupied_thresh"], meta["free_thresh"])
+    if not trinary_costmap:
+        return costmap_grid(occupancy_costmap(values), meta["resolution"], meta["origin"],
+                            unknown_is_free=unknown_is_free)
     occupied = values == 100
     unknown = values < 0
     if meta["mode"] == "scale":

@@ -31,24 +31,41 @@ def save_figure(fig, out: str | Path) -> Path:
     return out
 
 
-def draw_map(ax, occupied: np.ndarray) -> None:
-    """Obstacles black on white, cell (r, c) centred at x = c, y = r, row 0 at the top."""
+def draw_map(ax, occupied: np.ndarray, cost: np.ndarray | None = None):
+    """Obstacles black on white, cell (r, c) centred at x = c, y = r, row 0 at the top; with ``cost`` (a map's
+    traversal costs) the free cells above 1 shaded yellow to red. Returns the cost shading's image (for a colour
+    bar), or None."""
     ax.imshow(occupied, cmap="gray_r", vmin=0, vmax=1.6, interpolation="nearest")
+    shading = None
+    if cost is not None:
+        shading = ax.imshow(np.ma.masked_where(occupied | (cost <= 1), cost), cmap="YlOrRd", vmin=1,
+                            vmax=max(float(cost[~occupied].max(initial=1.0)), 1.0 + 1e-6), interpolation="nearest",
+                            alpha=0.8)
     ax.set_xlim(-0.5, occupied.shape[1] - 0.5)
     ax.set_ylim(occupied.shape[0] - 0.5, -0.5)
     ax.set_xticks([])
     ax.set_yticks([])
+    return shading
+
+
+def cost_bar(fig, ax, shading) -> None:
+    """A colour bar for :func:`draw_map`'s cost shading, if there is one."""
+    if shading is not None:
+        fig.colorbar(shading, ax=ax, fraction=0.046, label="traversal cost (1: open ground)")
 
 
 def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path, title: str = "",
                      distances: np.ndarray | None = None) -> Path:
-    """Write a PNG of the map, the distance field (if given) and the path; returns the file written."""
+    """Write a PNG of the map, its costs or else the distance field (if given), and the path; returns the file
+    written."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 6 * grid.shape[0] / grid.shape[1] + 0.4))
-    if distances is not None:
+    if distances is not None and grid.cost is None:
         shown = np.where(np.isfinite(distances) & ~grid.occupied, distances, np.nan)
         ax.imshow(shown, cmap="viridis", interpolation="nearest", alpha=0.45)
-    draw_map(ax, np.where(grid.occupied, 1.0, np.nan))
+        draw_map(ax, np.where(grid.occupied, 1.0, np.nan))
+    else:
+        cost_bar(fig, ax, draw_map(ax, grid.occupied, grid.cost))
     if path:
         rows, cols = np.array(path).T
         ax.plot(cols, rows, "-", color="tab:red", lw=2)
@@ -75,7 +92,7 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
     the switch-back point B."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 7.4))
-    draw_map(ax, scenario.grid.occupied)
+    cost_bar(fig, ax, draw_map(ax, scenario.grid.occupied, scenario.grid.cost))
     nodes = np.array(episode.nodes).reshape(-1, 2)
     for a, b in episode.edges:
         ax.plot(nodes[[a, b], 1], nodes[[a, b], 0], "-", color="0.8", lw=0.6, zorder=1)

@@ -6,7 +6,8 @@ name: my-world                # optional
 description: a box closes the door
 map: maps/office.yaml         # any file tdp.load_map reads, relative to this file; or a mapping:
                               #   {file: ..., unknown_is_free: false, threshold: 0.5, inflate_m: 0.2,
-                              #    cost_scaling_factor: 3.0, inflation_radius: 1.0}  (nav2's inflation costs)
+                              #    cost_scaling_factor: 3.0, inflation_radius: 1.0,  (nav2's inflation costs)
+                              #    trinary_costmap: false}  (a ROS map's graded values as costs)
                               #   {rows: 100, cols: 100, obstacles: [[r0, c0, r1, c1], ...],
                               #    resolution: 1.0, origin: [x, y, yaw]}   (a map made of rectangles)
 units: cells                  # cells (default) or metres
@@ -45,7 +46,8 @@ from .world import Obstacle, Scenario
 UNITS = ("cells", "metres")
 _TOP = {"name", "description", "map", "units", "tick_s", "start", "goal", "max_ticks", "max_s", "obstacles", "target",
         "change_tick", "change_s", "blocking"}
-_MAP_FILE = {"file", "unknown_is_free", "threshold", "inflate_m", "cost_scaling_factor", "inflation_radius"}
+_MAP_FILE = {"file", "unknown_is_free", "threshold", "trinary_costmap", "inflate_m", "cost_scaling_factor",
+             "inflation_radius"}
 _MAP_INLINE = {"rows", "cols", "obstacles", "resolution", "origin"}
 _OBSTACLE = {"cells": {"box", "waypoints", "speed", "appear_at", "vanish_at"},
              "metres": {"box", "waypoints", "speed", "appear_s", "vanish_s"}}
@@ -150,10 +152,11 @@ def _map(read: _Reader, value, folder: Path) -> tuple[GridMap, dict]:
         spec = read.mapping(value, "map", _MAP_FILE)
         file = Path(spec["file"]) if Path(spec["file"]).is_absolute() else folder / spec["file"]
         options = {}
-        if "unknown_is_free" in spec:
-            if not isinstance(spec["unknown_is_free"], bool):
-                read.fail("map.unknown_is_free", f"expected true or false, got {spec['unknown_is_free']!r}")
-            options["unknown_is_free"] = spec["unknown_is_free"]
+        for key in ("unknown_is_free", "trinary_costmap"):
+            if key in spec:
+                if not isinstance(spec[key], bool):
+                    read.fail(f"map.{key}", f"expected true or false, got {spec[key]!r}")
+                options[key] = spec[key]
         if "threshold" in spec:
             options["threshold"] = read.number(spec["threshold"], "map.threshold", 0.0, strict=True)
         try:

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
+from PIL import Image
 from hypothesis import strategies as st
 
 import tdp
@@ -243,3 +244,36 @@ def test_a_world_file_with_inflation_costs_plans_on_them_at_grid_level_and_in_py
 def test_a_world_file_with_only_half_of_the_inflation_parameters_is_refused(tmp_path):
     with pytest.raises(ValueError, match="go together"):
         tdp.load_world(costed_world(tmp_path, extra="threshold: 0.5"))
+
+
+def test_a_world_file_reads_a_scale_maps_graded_values_as_costs_with_trinary_costmap_false(tmp_path):
+    shade = np.full((20, 30), 255, np.uint8)
+    shade[5:15, 10:20] = 180  # occupancy 1 - 180/255 = 0.29: graded in scale mode
+    Image.fromarray(shade).save(tmp_path / "m.png")
+    (tmp_path / "m.yaml").write_text("image: m.png\nresolution: 0.1\norigin: [0, 0, 0]\nmode: scale\n"
+                                     "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    entry = "map: {file: m.yaml, trinary_costmap: %s}\nstart: [10, 2]\ngoal: [10, 27]\n"
+    (tmp_path / "w.yaml").write_text(entry % "false")
+    world = tdp.load_world(tmp_path / "w.yaml")
+    assert not world.grid.occupied.any() and world.grid.cost[10, 15] > 1 and world.grid.cost[0, 0] == 1
+    episode = tdp.simulate(world, tdp.NavigatorConfig())
+    assert episode.reached and all(world.grid.cost[cell] == 1 for cell in episode.trajectory)  # round the patch
+    (tmp_path / "w.yaml").write_text(entry % "1")
+    with pytest.raises(ValueError, match="trinary_costmap"):
+        tdp.load_world(tmp_path / "w.yaml")
+
+
+def test_figures_shade_the_costs_above_open_ground_and_binary_maps_draw_as_before():
+    from tdp.plot import draw_map, pyplot
+
+    occupied = np.zeros((4, 5), bool)
+    occupied[0, 0] = True
+    cost = np.ones((4, 5))
+    cost[2, 1:4] = [2.0, 3.0, 5.0]
+    _, ax = pyplot().subplots()
+    shading = draw_map(ax, occupied, tdp.GridMap(occupied, cost=cost).cost)
+    assert shading.get_clim() == (1, 5.0)
+    shown = shading.get_array()
+    assert shown.mask.sum() == 17 and shown[2, 1:4].tolist() == [2.0, 3.0, 5.0]  # open ground and the wall clear
+    assert draw_map(ax, occupied) is None
+    pyplot().close("all")

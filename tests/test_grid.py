@@ -76,6 +76,29 @@ def test_scale_and_raw_modes_follow_map_server(tmp_path):
     np.testing.assert_array_equal(ros_occupancy(tmp_path / "a.png", "scale", False, 0.65, 0.196), [[0, -1]])
 
 
+def test_scale_and_raw_maps_give_costs_as_nav2s_static_layer_reads_them_without_trinary_costmap(tmp_path, data_dir):
+    Image.fromarray(np.array([[0, 100, 200, 255]], np.uint8)).save(tmp_path / "g.png")
+    for mode in ("scale", "raw"):
+        write(tmp_path / f"{mode}.yaml", f"image: g.png\nresolution: 0.05\norigin: [1.0, 2.0, 0.0]\nmode: {mode}\n"
+              "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    # scale occupancy 100, 91, 4, 0 (above): 100 lethal; 91 -> trunc(0.91 x 254) = 231, 4 -> 10, 0 -> 0; NavFn's
+    # 1 + 0.8 c / 50 then gives the traversal cost
+    scale = tdp.load_map(tmp_path / "scale.yaml", trinary_costmap=False)
+    assert scale.occupied.tolist() == [[True, False, False, False]]
+    assert scale.cost[0, 1:].tolist() == pytest.approx([1 + 0.8 * 231 / 50, 1 + 0.8 * 10 / 50, 1.0])
+    assert scale.resolution == 0.05 and scale.origin[:2] == (1.0, 2.0)
+    assert tdp.load_map(tmp_path / "scale.yaml").occupied.tolist() == [[True, True, True, False]]  # band: unknown
+    # raw occupancy 0, 100, -1, -1: free, lethal, unknown (an obstacle unless unknown_is_free, then free ground)
+    raw = tdp.load_map(tmp_path / "raw.yaml", trinary_costmap=False)
+    assert raw.occupied.tolist() == [[False, True, True, True]]
+    free = tdp.load_map(tmp_path / "raw.yaml", trinary_costmap=False, unknown_is_free=True)
+    assert free.occupied.tolist() == [[False, True, False, False]] and free.cost[0, 2] == 1.0
+    np.testing.assert_array_equal(tdp.grid.occupancy_costmap(np.array([-1, 0, 1, 50, 99, 100])),
+                                  [255, 0, 2, 127, 251, 254])
+    with pytest.raises(ValueError, match="trinary_costmap"):
+        tdp.load_map(data_dir / "arena.map", trinary_costmap=False)
+
+
 def test_plain_image_threshold(tmp_path):
     Image.fromarray(np.array([[0, 90, 200]], np.uint8)).save(tmp_path / "i.png")
     np.testing.assert_array_equal(tdp.load_map(tmp_path / "i.png").occupied, [[True, True, False]])

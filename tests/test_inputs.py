@@ -177,3 +177,13 @@ def test_results_that_cannot_be_written_where_asked_are_kept_elsewhere(tmp_path,
     assert saved != gone / "metrics.json" and '"ratio": 1.0' in saved.read_text()
     assert str(saved) in capsys.readouterr().err
     saved.unlink()
+
+
+def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_of_them_is_an_error(tmp_path):
+    ros = ["tdp/maps/turtlebot3_world/map.yaml", "--start", "192", "161", "--goal", "175", "238"]
+    done = cli("-m", "tdp", "plan", *ros, "--cost-scaling-factor", "3", "--inflation-radius", "0.6",
+               "--out", str(tmp_path / "plan"))
+    assert done.returncode == 0 and "cost from (192, 161) to (175, 238)" in done.stdout
+    done = cli("-m", "tdp", "run", "--map", *ros, "--boxes", "0", "--cost-scaling-factor", "3", "--out", str(tmp_path))
+    assert done.returncode == 2 and done.stderr.strip() == ("error: --cost-scaling-factor and --inflation-radius go "
+                                                            "together (nav2's inflation layer)")

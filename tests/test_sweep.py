@@ -224,3 +224,16 @@ planners:
     with pytest.raises(ValueError, match="'nodes' is not one of its fields.*budget_ms"):
         load_spec(spec_file(tmp_path, "worlds: [{scenario: static}]\nplanners: [{planner: exact, nodes: 9}]",
                             "bad.yaml"))
+
+
+def test_a_map_entry_with_nav2s_inflation_cost_runs_on_a_costed_map_and_half_of_it_is_refused(tmp_path):
+    arena = Path(__file__).parent / "data" / "arena.map"
+    entry = f"  - {{map: {arena}, start: [1, 3], goal: [47, 46], boxes: 0, cost_scaling_factor: 0.5%s}}\n"
+    spec = load_spec(spec_file(tmp_path, "worlds:\n" + entry % ", inflation_radius: 6.0" +
+                               "planners: [{planner: exact}]\n"))
+    world = spec.worlds[0].build()
+    assert world.grid.cost is not None and world.grid.cost.max() > 3  # 252 exp(-0.5) at 1 m: 3.4
+    rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())
+    assert all(row["reached"] for row in rows) and len(rows) == 2  # the exact planner and the oracle
+    with pytest.raises(ValueError, match="go together"):
+        load_spec(spec_file(tmp_path, "worlds:\n" + entry % "" + "planners: [{planner: exact}]\n"))

@@ -15,6 +15,8 @@ A spec (every key but ``worlds`` and ``planners`` optional)::
         boxes: 4
         seeds: [0, 1, 2]
         blockage: true
+        cost_scaling_factor: 3.0     # optional: nav2's inflation cost (with inflation_radius, metres)
+        inflation_radius: 0.6
     common: {neighbourhood: 16}      # NavigatorConfig fields for every planner
     planners:
       - planner: exact               # exact replanning every tick; budget_ms: [0.3, 1] makes it anytime
@@ -80,7 +82,7 @@ class World:
             return tdp.scenarios.get(self.recipe["scenario"])
         if kind == "world":
             return tdp.load_world(self.recipe["path"])
-        grid = tdp.load_map(self.recipe["path"])
+        grid = tdp.load_map(self.recipe["path"], **self.recipe["options"])
         scenario = boxes_on_map(grid, tuple(self.recipe["start"]), tuple(self.recipe["goal"]), self.recipe["boxes"],
                                 self.recipe["seed"], self.recipe["blockage"])
         scenario.name = self.coords["world"]
@@ -235,17 +237,33 @@ def _worlds(entry, where: str, folder: Path) -> list[World]:
         scenario = tdp.load_world(file)
         return [World({"kind": kind, "path": str(file), "sha1": digest},
                       {"world": file.stem, "group": file.stem, "size": max(scenario.grid.shape), "seed": None})]
-    _only(entry, ("map", "start", "goal", "boxes", "seeds", "blockage"), where)
+    _only(entry, ("map", "start", "goal", "boxes", "seeds", "blockage") + _MAP_OPTIONS, where)
     file, digest = _file(entry["map"], where, folder)
-    grid = tdp.load_map(file)
+    options = _map_options(entry, where)
+    grid = tdp.load_map(file, **options)
     start = grid.check_free_cell(_cell(entry.get("start"), f"{where}.start"), f"{where}.start")
     goal = grid.check_free_cell(_cell(entry.get("goal"), f"{where}.goal"), f"{where}.goal")
     boxes = checks.integer(entry.get("boxes", 3), f"{where}.boxes", 0)
     blockage = checks.flag(entry.get("blockage", False), f"{where}.blockage")
-    return [World({"kind": kind, "path": str(file), "sha1": digest, "start": list(start), "goal": list(goal),
-                   "boxes": boxes, "seed": seed, "blockage": blockage},
+    return [World({"kind": kind, "path": str(file), "sha1": digest, "options": options, "start": list(start),
+                   "goal": list(goal), "boxes": boxes, "seed": seed, "blockage": blockage},
                   {"world": f"{file.stem}-{seed}", "group": file.stem, "size": max(grid.shape), "seed": seed})
             for seed in _seeds(entry.get("seeds", 0), where)]
+
+
+#: A map entry's options for tdp.load_map: nav2's inflation cost and a ROS map's graded values as costs.
+_MAP_OPTIONS = ("cost_scaling_factor", "inflation_radius", "trinary_costmap")
+
+
+def _map_options(entry: dict, where: str) -> dict:
+    """The load_map options of a map entry, checked (the inflation parameters go together)."""
+    options = {key: checks.number(entry[key], f"{where}.{key}", 0.0)
+               for key in _MAP_OPTIONS[:2] if key in entry}
+    if len(options) == 1:
+        raise ValueError(f"{where}: cost_scaling_factor and inflation_radius go together (nav2's inflation layer)")
+    if "trinary_costmap" in entry:
+        options["trinary_costmap"] = checks.flag(entry["trinary_costmap"], f"{where}.trinary_costmap")
+    return options
 
 
 def _named_apart(worlds) -> tuple[World, ...]:
