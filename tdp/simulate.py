@@ -4,6 +4,7 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
@@ -119,12 +120,7 @@ def simulate(scenario: Scenario, config: NavigatorConfig = NavigatorConfig(), ma
     limit = checks.optional_integer(max_ticks, "max_ticks", 1)
     if limit is None:
         limit = scenario.tick_limit
-    report = None
-    if progress:
-        def report(tick, robot):
-            if tick % 25 == 0:
-                print(f"  [{scenario.name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
-
+    report = _progress(scenario.name) if progress else None
     navigator = make_planner(start_grid(scenario), scenario.start, scenario.goal, config)
     navigator.setup()
     nodes = [tuple(map(int, c)) for c in navigator.nodes]
@@ -157,6 +153,14 @@ def oracle_run(scenario: Scenario, config: NavigatorConfig, max_ticks: int) -> d
 def start_grid(scenario: Scenario) -> GridMap:
     """The scenario's map as it stands at tick 0 (its obstacles at their first positions), with its costs."""
     return GridMap(scenario.occupancy(0), scenario.grid.resolution, scenario.grid.origin, scenario.grid.cost)
+
+
+def _progress(name: str) -> Callable[[int, tuple[int, int]], None]:
+    """A progress report for a run of world ``name``: a line on stderr every 25 ticks."""
+    def report(tick: int, robot: tuple[int, int]) -> None:
+        if tick % 25 == 0:
+            print(f"  [{name}] tick {tick}: robot at {robot}", file=sys.stderr, flush=True)
+    return report
 
 
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
