@@ -4,6 +4,9 @@
     python -m sim run --scenario NAME | --world FILE [--planner exact|accelerating|plain-dp] [--updates K] [--gui]
                       --out DIR
     python -m sim compare --scenario NAME | --world FILE [--updates K] --out DIR   the three planners side by side
+
+--cost-scaling-factor K --inflation-radius M give the planner's map nav2's inflation cost around every grown
+obstacle, boxes included (sim.episode.SimConfig), whatever the world.
 """
 from __future__ import annotations
 
@@ -22,12 +25,13 @@ def _config(args: argparse.Namespace, planner: str):
 def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, frames: list | None = None) -> dict:
     from tdp.cli import save_json, world_from
 
-    from .episode import run_episode
+    from .episode import SimConfig, run_episode
     from .render import save_trace_figure
 
     scenario, config = world_from(args), _config(args, planner)
+    sim = SimConfig(cost_scaling_factor=args.cost_scaling_factor, inflation_radius=args.inflation_radius)
     print(f"running {scenario.name} in PyBullet ({config.label()})", flush=True)
-    metrics = run_episode(scenario, config, gui=getattr(args, "gui", False), progress=True, frames=frames)
+    metrics = run_episode(scenario, config, sim, gui=getattr(args, "gui", False), progress=True, frames=frames)
     metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
     metrics["figure"] = str(save_trace_figure(scenario, metrics, out / f"{stem}.png"))
     return metrics
@@ -40,7 +44,7 @@ def _ratio(metrics: dict) -> str:
 def _summary(metrics: dict) -> str:
     return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
             f"oracle {metrics['oracle_length_m']:.2f} m, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
-            f"min clearance {metrics['min_clearance_m']:.3f} m; planner "
+            f"min clearance {metrics['min_clearance_m']:.3f} m (mean {metrics['mean_clearance_m']:.3f}); planner "
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
 

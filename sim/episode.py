@@ -19,13 +19,21 @@ from .robot import RADIUS_M, DiffDriveRobot
 from .world import SimWorld, cell_centres
 
 
+#: The farthest obstacle (metres) the clearance measures: beyond it the robot counts as CLEARANCE_M clear.
+CLEARANCE_M = 1.0
+
+
 @dataclass(frozen=True)
 class SimConfig:
     """The robot's and the simulator's settings. The world's scale comes from the scenario: a cell is its map's
     resolution (0.1 m in the named scenarios) and a tick its ``tick_s`` (0.2 s there), so the robot at
     ``max_speed`` (m/s) crosses about one cell per tick and obstacles at 0.5 cells per tick move at half its speed,
     as in the paper. Obstacles grow by the robot's radius plus ``margin_m``; moving boxes are also swept along
-    their measured velocity over ``horizon_s`` seconds, so that the robot keeps out of their way between ticks."""
+    their measured velocity over ``horizon_s`` seconds, so that the robot keeps out of their way between ticks.
+    With ``cost_scaling_factor`` (per metre) and ``inflation_radius`` (metres), as nav2's inflation layer names
+    them, the planner's map also costs more near every grown obstacle, boxes included (``252 exp(-k d)`` at d metres
+    from a grown obstacle within the inflation radius less the grown radius, through NavFn's mapping; the world's
+    own costs are kept where higher), and follows the boxes tick by tick."""
 
     physics_hz: int = 240
     control_hz: int = 20
@@ -34,6 +42,8 @@ class SimConfig:
     goal_tolerance_m: float = 0.1
     max_speed: float = 0.5
     frame_every: int = 2
+    cost_scaling_factor: float | None = None
+    inflation_radius: float | None = None
 
     @property
     def inflate_m(self) -> float:
@@ -47,6 +57,22 @@ class SimConfig:
                 raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
         if self.physics_hz < self.control_hz or self.physics_hz % self.control_hz:
             raise ValueError("physics_hz must be a multiple of control_hz")
+        inflation = (self.cost_scaling_factor, self.inflation_radius)
+        if (inflation[0] is None) != (inflation[1] is None):
+            raise ValueError("cost_scaling_factor and inflation_radius go together (nav2's inflation layer); got "
+                             f"{inflation[0]!r} and {inflation[1]!r}")
+        for name, value in zip(("cost_scaling_factor", "inflation_radius"), inflation):
+            if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+
+    def costs(self, occupied: np.ndarray, cell_m: float, world_cost: np.ndarray | None) -> np.ndarray | None:
+        """The planner's traversal costs over ``occupied`` (the grown obstacles, cells of ``cell_m`` metres): the
+        world's own (``world_cost``, or None), raised by the inflation cost when this config asks for it."""
+        if self.cost_scaling_factor is None:
+            return world_cost
+        grid = tdp.GridMap(occupied, cell_m, cost=world_cost)
+        reach_m = max(self.inflation_radius - self.inflate_m, 0.0)
+        return grid.inflate(0, cost_scaling_factor=self.cost_scaling_factor, inflation_radius=reach_m).cost
 
 
 def connect(gui: bool) -> int:
@@ -88,9 +114,9 @@ class _Run:
         for name, cell in (("start", scenario.start), ("goal", scenario.goal)):
             if mask[cell]:
                 raise ValueError(f"{name} {cell} is within {sim.inflate_m} m of an obstacle: no room for the robot")
-        grid = tdp.GridMap(mask, cost=scenario.grid.cost)  # the world's traversal costs, if it has any
-        self.navigator = tdp.make_planner(grid, scenario.start, scenario.goal, config)
-        self.feed = WorldFeed(mask, scenario.goal)
+        cost = sim.costs(mask, self.cell_m, scenario.grid.cost)  # the world's costs and the inflation's, if any
+        self.navigator = tdp.make_planner(tdp.GridMap(mask, cost=cost), scenario.start, scenario.goal, config)
+        self.feed = WorldFeed(mask, scenario.goal, cost)
         self.navigator.setup()
         x, y = self.grid.cell_to_world(*scenario.start)
         gx, gy = self.grid.cell_to_world(*scenario.goal)
@@ -100,6 +126,7 @@ class _Run:
         self.length_m = 0.0
         self.contact_steps = 0
         self.min_clearance = math.inf
+        self.clearances: list[float] = []
         self.planner_s: list[float] = []
         self.results: list[TickResult] = []
 
@@ -112,7 +139,8 @@ class _Run:
         """Rasterise, send the changed cells and the target's move, run the planner's tick."""
         now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.tick_s,
                                                          self.sim.horizon_s)
-        self.feed.update(self.navigator, now, self.scenario.target(tick))
+        cost = self.sim.costs(now, self.cell_m, self.scenario.grid.cost) if self.sim.cost_scaling_factor is not None else None
+        self.feed.update(self.navigator, now, self.scenario.target(tick), cost)
         self.navigator.move_robot(self.robot_cell())
         began = time.perf_counter()
         result = self.navigator.tick()
@@ -173,9 +201,14 @@ class _Run:
         self.contact_steps += int(touching)
 
     def _measure_clearance(self) -> None:
+        """The robot's distance to the nearest obstacle now (metres, up to CLEARANCE_M): its minimum and its
+        samples, one per control step."""
+        nearest = CLEARANCE_M
         for body in self.world.obstacle_bodies():
-            for point in p.getClosestPoints(self.robot.body, body, 1.0, physicsClientId=self.client):
-                self.min_clearance = min(self.min_clearance, point[8])
+            for point in p.getClosestPoints(self.robot.body, body, CLEARANCE_M, physicsClientId=self.client):
+                nearest = min(nearest, point[8])
+        self.min_clearance = min(self.min_clearance, nearest)
+        self.clearances.append(nearest)
 
     def reached(self) -> bool:
         x, y, _ = self.robot.pose()
@@ -240,7 +273,8 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
         "ratio": run.length_m / oracle_m if oracle["reached"] and oracle_m > 0 else None,
         "contacts": run.contact_steps,
-        "min_clearance_m": run.min_clearance, "detections": detection_records(run.results),
+        "min_clearance_m": run.min_clearance, "mean_clearance_m": float(np.mean(run.clearances or [math.nan])),
+        "detections": detection_records(run.results),
         "planner_ms_per_tick": timing_summary(run.planner_s),
         "trace": run.trace, "modes": [result.mode for result in run.results], "nodes": run.navigator.nodes.tolist(),
         "turn_point": turn_point, "switch_back_point": switch_back_point,

@@ -82,6 +82,9 @@ class Planner(Protocol):
     def update_map(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Cells (n, 2) whose occupancy changed, and their new state (bool per cell)."""
 
+    def update_costs(self, cells: np.ndarray, costs: np.ndarray) -> None:
+        """Cells (n, 2) whose traversal cost changed, and their new costs (a map with costs only)."""
+
     def set_goal(self, cell: tuple[int, int]) -> None:
         """The target moved to ``cell``."""
 
@@ -115,19 +118,27 @@ def landmarks(results: Sequence[TickResult]) -> tuple[int | None, int | None]:
 
 class WorldFeed:
     """Hands a planner what changed in its world since the last tick: the cells whose occupancy flipped (only
-    those) and the target's moves."""
+    those), on a map with changing traversal costs the cells whose cost changed, and the target's moves."""
 
-    def __init__(self, occupied: np.ndarray, target: tuple[int, int]):
+    def __init__(self, occupied: np.ndarray, target: tuple[int, int], cost: np.ndarray | None = None):
         self.occupied = np.array(occupied, bool)
         self.target = tuple(target)
+        self.cost = None if cost is None else np.array(cost, np.float32)
         self.planner_s = 0.0  # seconds the last update spent in the planner's update_map and set_goal
 
-    def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int]) -> bool:
-        """Send ``planner`` the changes from the last state to ``occupied`` and ``target``; return whether the
-        target moved."""
+    def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int],
+               cost: np.ndarray | None = None) -> bool:
+        """Send ``planner`` the changes from the last state to ``occupied``, ``cost`` (None: the costs stay) and
+        ``target``; return whether the target moved. Costs go first, so that a cell freed now takes its new cost."""
         occupied = np.asarray(occupied, bool)  # kept as it is, not copied: a runner hands a fresh map every tick
         changed = np.argwhere(occupied != self.occupied)
         began = time.perf_counter()
+        if cost is not None:
+            cost = np.asarray(cost, np.float32)
+            repriced = np.argwhere(cost != self.cost)
+            if len(repriced):
+                planner.update_costs(repriced, cost[repriced[:, 0], repriced[:, 1]])
+            self.cost = cost
         if len(changed):
             planner.update_map(changed, occupied[changed[:, 0], changed[:, 1]])
         self.occupied = occupied

@@ -1368,6 +1368,13 @@ class _LayerArrays:
         self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
         self.activate_all()
 
+    def allow_cost(self, cost: float) -> None:
+        """Make room in the search's ring for free cells of cost up to ``cost`` (the buckets are made again at the
+        next search if it needs more)."""
+        ring = _search_buckets(cost)
+        if ring > self.ring:
+            self.ring, self._links = ring, None
+
     def _array(self, shape: tuple[int, int, int]):
         if self.lanes:
             return _freed_when_dropped(ti.Vector.ndarray(self.lanes, ti.f32, shape))
@@ -1721,7 +1728,7 @@ class Engine:
                  nodes: np.ndarray | None = None, node_cap: float = 0.0, neighbourhood: int = 16,
                  corner_cutting: bool = False, cost: np.ndarray | None = None):
         self.occupied = np.array(occupied, dtype=bool)
-        self.cost = None if cost is None else np.asarray(cost, np.float32)
+        self.cost = None if cost is None else np.array(cost, np.float32)  # a copy: set_costs changes it
         self.rows, self.cols = self.occupied.shape
         self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
         self.corner_cutting = bool(corner_cutting)
@@ -1871,6 +1878,31 @@ class Engine:
         cells, occupied = _edit(cells, occupied)
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         self._paint(self._layers, cells, occupied)
+
+    def set_costs(self, cells: np.ndarray, costs) -> None:
+        """Set the traversal cost of ``cells`` (n, 2) to ``costs`` (a number or one per cell, 1 to MAX_COST) on a
+        map with costs; an occupied cell keeps its new cost for when it is freed. The goal layer repairs as after
+        occupancy edits: a changed free cell is lifted as if blocked and lowered again at its new cost.
+
+        Raises:
+            ValueError: the engine was built without costs, or a cost is not a number from 1 to MAX_COST.
+        """
+        if self.cost is None:
+            raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
+        cells = _cells_array(cells)
+        costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
+        if not np.all((costs >= 1) & (costs <= MAX_COST)):  # NaN fails too
+            wrong = costs[~((costs >= 1) & (costs <= MAX_COST))][0]
+            raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {wrong}")
+        costs = costs.astype(np.float32)
+        at = (cells[:, 0], cells[:, 1])
+        changed = self.cost[at] != costs
+        cells, costs = cells[changed], costs[changed]
+        self.cost[cells[:, 0], cells[:, 1]] = costs
+        self._goal.allow_cost(float(costs.max(initial=1.0)))
+        free = cells[~self.occupied[cells[:, 0], cells[:, 1]]]
+        for occupied in (True, False):
+            self._paint([self._goal], free, np.full(len(free), occupied))
 
     def set_node_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` occupied or free in the node layers only (e.g. cells a box is predicted to enter); the goal

@@ -102,6 +102,14 @@ class ExactPlanner:
         if len(cells):
             self._exact_from = ()
 
+    def update_costs(self, cells, costs) -> None:
+        """Set the traversal costs of ``cells`` (a mask or (row, col) cells) to ``costs`` (a number or one per cell)
+        on a map with costs (:meth:`tdp.engine.Engine.set_costs`)."""
+        cells = cells_from(self.grid.shape, cells, "update_costs")
+        self.engine.set_costs(cells, costs)
+        if len(cells):
+            self._exact_from = ()
+
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the target; it may stand on an obstacle (then no cell reaches it until it leaves)."""
         self.engine.set_goal(checks.cell(goal, self.grid.shape, "goal"))

@@ -150,6 +150,16 @@ class DistanceField:
         current = self._engine.occupied[cells[:, 0], cells[:, 1]]
         self._engine.set_cells(cells[current != occupied], occupied)
 
+    def set_costs(self, cells, costs) -> None:
+        """Set the traversal costs of ``cells`` ((row, col) cells, or a bool mask of the map's shape) to ``costs`` (a
+        number or one per cell, 1 to ``tdp.grid.MAX_COST``) on a map with costs; distances follow at the next
+        converge (or over the next iterations).
+
+        Raises:
+            ValueError: the map has no costs, a cell is outside it, or a cost is not a number from 1 to MAX_COST.
+        """
+        self._engine.set_costs(cells_from(self._grid.shape, cells, "set_costs"), costs)
+
     def set_goal(self, cell: tuple[int, int]) -> None:
         """Move the goal (a free cell); distances follow over the next iterations."""
         self._engine.set_goal(self._check_free(cell, "goal"))

@@ -89,6 +89,12 @@ class Navigator:
         self.readings.edited()
         self.readings.cover()
 
+    def update_costs(self, cells, costs) -> None:
+        """Set the traversal costs of ``cells`` (a mask or (row, col) cells) to ``costs`` (a number or one per cell)
+        on a map with costs: the goal layer's (:meth:`tdp.engine.Engine.set_costs`; node layers measure cells)."""
+        self.engine.set_costs(cells_from(self.grid.shape, cells, "update_costs"), costs)
+        self.readings.edited()
+
     def set_goal(self, goal: Cell) -> None:
         """Move the target (moving-target scenarios). The goal may be on an obstacle (a moving target may cross
         one): while it is, the goal layer has no source, its values rise, and the robot keeps to the last route
@@ -212,7 +218,7 @@ class Navigator:
         chain = self._goal_chain(max_steps)
         if chain is None:
             return False
-        costs = chain_costs(chain, self.grid.cost)
+        costs = chain_costs(chain, self.engine.cost)
         if costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
             return False
         near = cells_near(chain_costs(chain), self.spacing)

@@ -70,6 +70,53 @@ def test_repairs_after_random_edits_equal_dijkstra_on_the_edited_map(case, neigh
         assert_equal_within_float32(field.distances(), expected)
 
 
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(cost_maps(), st.sampled_from([8, 16]), st.lists(
+    st.tuples(st.integers(0, 15), st.integers(0, 15), st.integers(0, 4), st.sampled_from([1.0, 3.0, 40.0, 400.0])),
+    min_size=1, max_size=10), st.booleans())
+def test_repairs_after_random_cost_edits_equal_dijkstra_on_the_new_costs(case, neighbourhood, edits, batched):
+    """Cost edits raise and lower costs in boxes of up to 3 x 3 (past the map's largest cost too), some on
+    occupied cells (kept for when they are freed), mixed with occupancy edits; repaired after each edit, or after
+    all of them at once."""
+    occupied, cost, goal = case
+    grid = tdp.GridMap(occupied, cost=cost)
+    field = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    field.converge()
+    now, costs = occupied.copy(), grid.cost.astype(np.float64)
+    for row, col, side, value in edits:
+        rows = slice(row % now.shape[0], row % now.shape[0] + max(side, 1))
+        cols = slice(col % now.shape[1], col % now.shape[1] + max(side, 1))
+        mask = np.zeros(now.shape, bool)
+        mask[rows, cols] = True
+        if side == 0:  # an occupancy flip of one cell instead
+            cell = (row % now.shape[0], col % now.shape[1])
+            if cell != goal:
+                now[cell] = not now[cell]
+                field.set_occupied([cell], bool(now[cell]))
+        else:
+            field.set_costs(mask, value)
+            costs[mask] = value
+        if not batched:
+            field.converge()
+            expected = distances_to(now, goal, neighbourhood, False, cost=np.where(now, 1.0, costs))
+            assert_equal_within_float32(field.distances(), expected)
+    field.converge()
+    assert_equal_within_float32(field.distances(), distances_to(now, goal, neighbourhood, False,
+                                                                cost=np.where(now, 1.0, costs)))
+
+
+def test_cost_edits_need_a_map_with_costs_and_costs_from_1_to_max_cost():
+    field = tdp.DistanceField(tdp.GridMap(np.zeros((5, 5), bool)), (0, 0))
+    with pytest.raises(ValueError, match="binary"):
+        field.set_costs([(1, 1)], 2.0)
+    costed = tdp.DistanceField(tdp.GridMap(np.zeros((5, 5), bool), cost=np.ones((5, 5))), (0, 0))
+    for bad in (0.5, float("nan"), float("inf"), 2e6):
+        with pytest.raises(ValueError, match="costs must be between 1 and"):
+            costed.set_costs([(1, 1)], bad)
+    with pytest.raises(ValueError, match="set_costs"):
+        costed.set_costs([(9, 9)], 2.0)
+
+
 @settings(max_examples=25, deadline=None)
 @given(cost_maps(), st.sampled_from([4, 8, 16]))
 def test_synchronous_iterations_reach_the_weighted_fixed_point_bit_for_bit(case, neighbourhood):

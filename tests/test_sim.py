@@ -9,9 +9,10 @@ import pybullet as p
 import pytest
 
 import tdp
-from sim.episode import connect, run_episode
+from sim.episode import SimConfig, connect, run_episode
 from sim.robot import DiffDriveRobot, wheel_speeds
 from sim.world import SimWorld, box_cells
+from tdp.contract import WorldFeed
 from tdp.grid import rectangles
 
 
@@ -106,6 +107,51 @@ def test_every_scenario_reaches_the_goal_in_pybullet_without_contact(name):
     assert metrics["min_clearance_m"] > 0
     assert metrics["time_s"] <= tdp.scenarios.get(name).max_ticks * tdp.scenarios.get(name).tick_s
     assert 0.8 < metrics["ratio"] < 1.3
+
+
+@pytest.mark.parametrize("planner", ["exact", "accelerating"])
+def test_nav2s_inflation_cost_round_every_obstacle_keeps_the_robot_clearer_at_a_little_more_length(planner):
+    """A box closes the route (sudden-blockage): with the inflation cost around walls and boxes the robot keeps
+    farther from them all the way, and still reaches without contact."""
+    scenario, config = tdp.scenarios.get("sudden-blockage"), tdp.NavigatorConfig(planner=planner)
+    binary = run_episode(scenario, config)
+    costed = run_episode(scenario, config, SimConfig(cost_scaling_factor=3.0, inflation_radius=0.8))
+    assert costed["reached"] and costed["contacts"] == 0
+    assert costed["min_clearance_m"] > 2 * binary["min_clearance_m"]
+    assert costed["mean_clearance_m"] > binary["mean_clearance_m"]
+    assert costed["path_length_m"] < 1.1 * binary["path_length_m"]
+
+
+def test_the_feed_sends_changed_costs_before_occupancy_and_the_planner_repairs_on_them():
+    calls = []
+
+    class Recorder:
+        def update_costs(self, cells, costs):
+            calls.append(("costs", cells.tolist(), costs.tolist()))
+
+        def update_map(self, cells, occupied):
+            calls.append(("map", cells.tolist(), occupied.tolist()))
+
+    occupied, cost = np.zeros((2, 3), bool), np.ones((2, 3))
+    feed = WorldFeed(occupied, (0, 0), cost)
+    now, dearer = occupied.copy(), cost.copy()
+    now[1, 2], dearer[0, 1] = True, 4.0
+    feed.update(Recorder(), now, (0, 0), dearer)
+    feed.update(Recorder(), now, (0, 0), dearer)  # nothing changed: nothing sent
+    assert calls == [("costs", [[0, 1]], [4.0]), ("map", [[1, 2]], [True])]
+    grid = tdp.GridMap(np.zeros((5, 9), bool), cost=np.ones((5, 9)))
+    planner = tdp.ExactPlanner(grid, (2, 0), (2, 8), tdp.NavigatorConfig(neighbourhood=8))
+    planner.setup()
+    planner.update_costs([(row, 4) for row in range(5)], 50.0)  # a dear column across the way
+    planner.tick()
+    assert planner.engine.goal_distances()[2, 0] == pytest.approx(6 + 2 * 25.5, rel=1e-6)  # two moves touch it
+
+
+def test_sim_config_takes_both_inflation_parameters_or_neither():
+    with pytest.raises(ValueError, match="go together"):
+        SimConfig(cost_scaling_factor=3.0)
+    with pytest.raises(ValueError, match="inflation_radius must be"):
+        SimConfig(cost_scaling_factor=3.0, inflation_radius=-1.0)
 
 
 def test_start_without_room_for_the_robot_is_a_clear_error():
