@@ -9,7 +9,10 @@ shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gr
 from-scratch converge (a search) and the repair after a 3 x 3 box on the weighted optimal route from the farthest
 reachable cell (the same cells on both maps); the weighted field is checked against scipy's float64 Dijkstra on the
 weighted graph (relative 1e-4: float32 sums over long routes). Then the paths: on the ROS maps, how much farther
-from the walls a path keeps with nav2's inflation cost than on the binary map, and at what length.
+from the walls a path keeps with nav2's inflation cost than on the binary map, and at what length - for converged
+fields, for every planner driving through shuttling boxes at grid level (EPISODE_PAIRS pairs a map, the same boxes
+on both maps), and in PyBullet (the named scenarios and the TurtleBot3 world, the inflation cost round walls and
+boxes: ``SimConfig(cost_scaling_factor, inflation_radius)``).
 """
 from __future__ import annotations
 
@@ -26,6 +29,9 @@ from benchmarks.reference_graph import grid_graph
 from tdp.random_worlds import maze
 
 REPEATS, QUICK_REPEATS = 7, 3
+EPISODE_PAIRS = 3
+GRID_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite")
+NAV2_INFLATION = {"cost_scaling_factor": 3.0, "inflation_radius": 1.05}  # per metre, metres
 ROS_MAPS = [("turtlebot3_world", ROOT / "tests" / "data" / "turtlebot3_world" / "map.yaml"),
             ("nav2 warehouse", NAV2 / "warehouse.yaml"), ("nav2 depot", NAV2 / "depot.yaml")]
 PAIRS = 8
@@ -116,7 +122,7 @@ def clearance(quick: bool) -> list[dict]:
         grid = tdp.load_map(path)
         radius = ROBOT_RADIUS_M / grid.resolution
         binary = grid.inflate(radius)
-        costed = grid.inflate(radius, cost_scaling_factor=3.0, inflation_radius=1.05)
+        costed = grid.inflate(radius, **NAV2_INFLATION)
         away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
         free = largest_free_region(binary.occupied)
         rng = np.random.default_rng(1)
@@ -144,7 +150,7 @@ def paths_figure(rows: list[dict], path) -> None:
     grid = tdp.load_map(map_path)
     radius = ROBOT_RADIUS_M / grid.resolution
     maps = {"path on the binary map": grid.inflate(radius),
-            "path with nav2's inflation cost": grid.inflate(radius, cost_scaling_factor=3.0, inflation_radius=1.05)}
+            "path with nav2's inflation cost": grid.inflate(radius, **NAV2_INFLATION)}
     binary, costed = maps.values()
     rows_free, cols_free = np.nonzero(~binary.occupied)
     top, bottom, left, right = rows_free.min() - 3, rows_free.max() + 4, cols_free.min() - 3, cols_free.max() + 4
@@ -162,6 +168,91 @@ def paths_figure(rows: list[dict], path) -> None:
     ax.set_title(f"turtlebot3_world: clearance x{best['clearance_ratio']:.2f} at x{best['length_ratio']:.2f} the "
                  "length", fontsize=9)
     save_figure(fig, path)
+
+
+def _mean_clearance_m(cells: list, away_m: np.ndarray) -> float:
+    return float(np.mean([away_m[tuple(cell)] for cell in cells]))
+
+
+def grid_episodes(quick: bool) -> list[dict]:
+    """Every planner (GRID_PLANNERS) driving through three shuttling boxes on the ROS maps inflated by the robot,
+    binary and with nav2's inflation cost (the same boxes: they are placed by occupancy): reached, collisions, the
+    trajectory's mean clearance (metres to the nearest obstacle of the map as loaded) and its length."""
+    from tdp.dstar_lite import DStarLite
+    from tdp.random_worlds import boxes_on_map
+    from tdp.simulate import run_planner, start_grid
+
+    rows = []
+    for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
+        grid = tdp.load_map(path)
+        radius = ROBOT_RADIUS_M / grid.resolution
+        maps = {"binary": grid.inflate(radius), "costed": grid.inflate(radius, **NAV2_INFLATION)}
+        away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
+        free = largest_free_region(maps["binary"].occupied)
+        rng = np.random.default_rng(2)
+        for pair in range(1 if quick else EPISODE_PAIRS):
+            start, goal = (tuple(int(v) for v in free[rng.integers(len(free))]) for _ in range(2))
+            for planner in GRID_PLANNERS[:2] if quick else GRID_PLANNERS:
+                row = {"map": name, "pair": pair, "planner": planner}
+                for kind, which in maps.items():
+                    world = boxes_on_map(which, start, goal, boxes=3, seed=pair)
+                    config = tdp.NavigatorConfig(planner="exact" if planner == "dstar-lite" else planner)
+                    if planner == "dstar-lite":
+                        driver = DStarLite(world.occupancy(0), start, goal, cost=world.grid.cost)
+                    else:
+                        driver = tdp.make_planner(start_grid(world), start, goal, config)
+                        driver.setup()
+                    record = run_planner(world, driver, config, world.tick_limit)
+                    row[kind] = {"reached": bool(record["reached"]), "collisions": record["collisions"],
+                                 "clearance_m": _mean_clearance_m(record["trajectory"], away_m),
+                                 "length": record["length"]}
+                rows.append(row)
+            print(f"  {name} pair {pair}: episodes done", flush=True)
+    return rows
+
+
+def pybullet_episodes(quick: bool) -> list[dict]:
+    """The named scenarios and the TurtleBot3 world in PyBullet, exact replanning and accelerating nodes, without
+    and with nav2's inflation cost round every grown obstacle (``SimConfig``: 3 per metre, 0.8 m): reached,
+    contacts, the closest approach and the mean clearance (to the nearest body, up to 1 m) and the path length."""
+    from sim.episode import SimConfig, run_episode
+
+    worlds = [tdp.load_world(ROOT / "examples" / "turtlebot3-world.yaml")]
+    worlds += [] if quick else [tdp.scenarios.get(name) for name in tdp.scenarios.names()]
+    sims = {"binary": SimConfig(), "costed": SimConfig(cost_scaling_factor=3.0, inflation_radius=0.8)}
+    rows = []
+    for world in worlds:
+        for planner in ("exact", "accelerating"):
+            row = {"world": world.name, "planner": planner}
+            for kind, sim in sims.items():
+                metrics = run_episode(world, tdp.NavigatorConfig(planner=planner), sim)
+                row[kind] = {key: metrics[key] for key in ("reached", "contacts", "min_clearance_m",
+                                                           "mean_clearance_m", "path_length_m")}
+            rows.append(row)
+        print(f"  {world.name}: PyBullet done", flush=True)
+    return rows
+
+
+def print_episodes(grid_rows: list[dict], bullet_rows: list[dict]) -> None:
+    print_table(["map", "pair", "planner", "reached (binary, costed)", "collisions", "clearance m binary",
+                 "costed", "ratio", "length ratio"],
+                [[r["map"], str(r["pair"]), r["planner"], f"{r['binary']['reached']}, {r['costed']['reached']}",
+                  f"{r['binary']['collisions']}, {r['costed']['collisions']}", f"{r['binary']['clearance_m']:.3f}",
+                  f"{r['costed']['clearance_m']:.3f}", f"{r['costed']['clearance_m'] / r['binary']['clearance_m']:.2f}",
+                  f"{r['costed']['length'] / max(r['binary']['length'], 1e-9):.2f}"] for r in grid_rows])
+    for planner in dict.fromkeys(r["planner"] for r in grid_rows):
+        mine = [r for r in grid_rows if r["planner"] == planner]
+        print(f"{planner}: mean clearance ratio "
+              f"{np.mean([r['costed']['clearance_m'] / r['binary']['clearance_m'] for r in mine]):.2f}, mean length "
+              f"ratio {np.mean([r['costed']['length'] / max(r['binary']['length'], 1e-9) for r in mine]):.2f}")
+    print_table(["world", "planner", "reached", "contacts", "closest m binary", "costed", "mean clearance m binary",
+                 "costed", "ratio", "length ratio"],
+                [[r["world"], r["planner"], f"{r['binary']['reached']}, {r['costed']['reached']}",
+                  f"{r['binary']['contacts']}, {r['costed']['contacts']}", f"{r['binary']['min_clearance_m']:.3f}",
+                  f"{r['costed']['min_clearance_m']:.3f}", f"{r['binary']['mean_clearance_m']:.3f}",
+                  f"{r['costed']['mean_clearance_m']:.3f}",
+                  f"{r['costed']['mean_clearance_m'] / r['binary']['mean_clearance_m']:.2f}",
+                  f"{r['costed']['path_length_m'] / r['binary']['path_length_m']:.2f}"] for r in bullet_rows])
 
 
 def figure(rows: list[dict], path) -> None:
@@ -200,8 +291,11 @@ def main() -> None:
         mine = [r for r in paths if r["map"] == name]
         print(f"{name}: mean clearance ratio {np.mean([r['clearance_ratio'] for r in mine]):.2f}, "
               f"mean length ratio {np.mean([r['length_ratio'] for r in mine]):.2f}")
-    written = save_results("costs-quick" if args.quick else "costs", {"rows": rows, "clearance": paths},
-                           lambda path: figure(rows, path))
+    grid_rows, bullet_rows = grid_episodes(args.quick), pybullet_episodes(args.quick)
+    print_episodes(grid_rows, bullet_rows)
+    written = save_results("costs-quick" if args.quick else "costs",
+                           {"rows": rows, "clearance": paths, "grid_episodes": grid_rows,
+                            "pybullet_episodes": bullet_rows}, lambda path: figure(rows, path))
     figure_path = written.with_name("costs-paths-quick.png" if args.quick else "costs-paths.png")
     paths_figure(paths, figure_path)
     print(f"wrote {figure_path}")
