@@ -109,6 +109,12 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: mazes the dearest), each later one what the rate measured says fits in the rest, SLICE_GROWTH times the last at
 #: most (``sweeps_fitting``).
 RESTART_SHARE = 0.5
+#: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of the cells the last
+#: search took (a ski rental again: at most about 1 + MEND_SHARE times a restart, whatever the cut); raising a cell
+#: costs about RAISE_COST cells a search takes (its relaxation, then the look at the cells that came through it:
+#: 40-50 ns against 19 ns measured on the 2-core VM), lowering one a cell.
+MEND_SHARE = 0.4
+RAISE_COST = 2
 SLOWEST_SWEEP_S = 2.5e-6
 _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 #: A slice of a sliced converge (a repair's here, a budgeted tick's in :class:`tdp.ExactPlanner`) makes at most this
@@ -116,6 +122,10 @@ _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 #: need not hold for the next's.
 SLICE_GROWTH = 4
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
+_STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_search_rules``' ``mend``)
+#: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
+#: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
+MIN_RING = 1024
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 8
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -178,10 +188,34 @@ class _SearchRun(NamedTuple):
 
 
 class _SearchResult(NamedTuple):
-    """What ``search`` hands back: the buckets emptied, and the cells still listed (a focused search's frontier)."""
+    """What ``search`` hands back: the buckets emptied, the cells still listed (a focused search's frontier) and the
+    cells taken from the buckets."""
 
     buckets: int
     frontier: int
+    taken: int
+
+
+class _MendRun(NamedTuple):
+    """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
+    stamped for, the most cells it may raise before it gives way to a restart, and whether to mend (0: a launch
+    that only compiles)."""
+
+    focus_row: int
+    focus_col: int
+    tick: int
+    budget: int
+    go: int
+
+
+class _MendResult(NamedTuple):
+    """What ``mend`` hands back: the buckets emptied, the cells left to lower (a focused mend's frontier), the cells
+    raised to the cap, and its work in cells a search takes (over the budget: it gave up)."""
+
+    buckets: int
+    frontier: int
+    raised: int
+    spent: int
 
 
 class _PaintRun(NamedTuple):
@@ -203,6 +237,7 @@ def _slots(launch: type):
 
 _STEP, _ITERATE, _SETTLE, _SETTLED_BY = _slots(_StepRun), _slots(_IterateRun), _slots(_SettleRun), _slots(_SettleResult)
 _SEARCH, _SEARCHED, _PAINT = _slots(_SearchRun), _slots(_SearchResult), _slots(_PaintRun)
+_MEND, _MENDED = _slots(_MendRun), _slots(_MendResult)
 
 
 _initialised = False
@@ -244,9 +279,9 @@ def _search_buckets(max_cost: float) -> int:
     unweighted). A bucket holds the cells whose priority (value, plus the distance from the focus if any) has that
     floor. A move of length L (1 to sqrt 5) adds at most L x ``max_cost`` to a value and L to the distance, so a cell
     joins a bucket at most floor(1 + sqrt 5 (max_cost + 1)) past the one being emptied: the ring is the next power
-    of 2 beyond (8 unweighted)."""
+    of 2 beyond, and at least MIN_RING."""
     reach = math.floor(1 + math.sqrt(5) * (max_cost + 1))
-    return 1 << reach.bit_length()
+    return max(MIN_RING, 1 << reach.bit_length())
 
 
 def _serial_limit(tiles: int) -> int:
@@ -895,6 +930,7 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
     ``_bucket_rules``."""
     blocked, crossing, moves, move_cost, penalty = cell.blocked, cell.crossing, cell.moves, cell.move_cost, cell.penalty
+    updated = cell.updated
     buckets = _bucket_rules()
     unlink, link = buckets.unlink, buckets.link
 
@@ -924,30 +960,159 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
             bucket = ti.i32(priority(0.0, i, j, focus_row, focus_col))
             link(links, heads, i * width + j, bucket & mask)
             listed = 1
+        taken = 0
         while listed > 0 and not (focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
-            slot = bucket & mask
-            while links[0, heads + slot] >= 0:
-                c = links[0, heads + slot]
-                unlink(links, heads, c)
-                listed -= 1
-                i, j = c // width, c % width
-                value = values[0, i, j]
-                for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
-                    u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
-                    cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
-                    cand += penalty(pen, 0, u, v, 0)
-                    if cand < values[0, u, v]:
-                        values[0, u, v] = cand
-                        there = u * width + v
-                        if links[1, there] == _UNLISTED:
-                            listed += 1
-                        else:
-                            unlink(links, heads, there)
-                        due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
-                        link(links, heads, there, due & mask)
+            change = empty(values, pen, links, bucket, focus_row, focus_col)
+            listed += change[0]
+            taken += change[1]
             bucket += 1
             emptied += 1
-        return ti.Vector([emptied, listed])
+        return ti.Vector([emptied, listed, taken])
+
+    @ti.func
+    def empty(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col):
+        """Take every cell of ``bucket`` and lower its neighbours through it, listing each lowered one in the bucket
+        of its priority; returns (the change in the cells listed, the cells taken)."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        mask = links.shape[1] - heads - 1
+        slot, listed, taken = bucket & mask, 0, 0
+        while links[0, heads + slot] >= 0:
+            c = links[0, heads + slot]
+            unlink(links, heads, c)
+            listed -= 1
+            taken += 1
+            i, j = c // width, c % width
+            value = values[0, i, j]
+            for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
+                u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
+                cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
+                cand += penalty(pen, 0, u, v, 0)
+                if cand < values[0, u, v]:
+                    values[0, u, v] = cand
+                    there = u * width + v
+                    if links[1, there] == _UNLISTED:
+                        listed += 1
+                    else:
+                        unlink(links, heads, there)
+                    due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
+                    link(links, heads, there, due & mask)
+        return ti.Vector([listed, taken])
+
+    @ti.func
+    def push(values: ti.template(), links: ti.template(), cap, top, i, j):
+        """Put padded cell (i, j) on the raise's stack (row 0 of ``links``, ``top`` entries) unless it is on it or
+        at the cap; returns the new top."""
+        c = i * values.shape[2] + j
+        if links[1, c] == _UNLISTED and values[0, i, j] < cap:
+            links[1, c] = _STACKED
+            links[0, top] = c
+            top += 1
+        return top
+
+    @ti.func
+    def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
+                  trail: ti.template(), cells: ti.template(), cap, budget):
+        """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
+        them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
+        cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
+        checked first and a raised cell's neighbours after it. Cell by cell on a stack: a sealed pocket rises at
+        memory speed, with no wave to wait for. Every cell left below the cap then has a real route (a neighbour at
+        least a move lower, down to the source). Only a raised cell's dependants - neighbours whose value is its
+        old one plus their move to it - are looked at again. The raised cells go in ``trail``; returns how many,
+        and it stops once they cost more than ``budget`` (cells a search takes; a raise costs RAISE_COST each)."""
+        top, raised = 0, 0
+        for k in range(cells.shape[0]):
+            for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
+                top = push(values, links, cap, top, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
+        while top > 0 and raised * RAISE_COST <= budget:
+            top -= 1
+            c = links[0, top]
+            links[1, c] = _UNLISTED
+            i, j = c // values.shape[2], c % values.shape[2]
+            value = values[0, i, j]
+            if value < cap and updated(values, pen, header, cap, 0, i, j) > value:
+                values[0, i, j] = cap
+                trail[raised] = c
+                raised += 1
+                for m in ti.static(moves):  # the neighbours whose value came through this cell's (their route;
+                    u, v = i - m.dr, j - m.dc  # a move whose crossing is now blocked starts within reach of an edit)
+                    if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
+                        top = push(values, links, cap, top, u, v)
+        while top > 0:  # over budget: the stack emptied, for the restart
+            top -= 1
+            links[1, links[0, top]] = _UNLISTED
+        return raised
+
+    @ti.func
+    def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
+                 cells: ti.template(), raised, cap):
+        """The seeds of a repair's lowering: each raised cell (``trail``'s first ``raised``) and each cell within
+        reach of an edit whose relaxation is below its value takes it; the seeds replace the trail (in place: no more
+        of them than cells looked at). Returns how many."""
+        seeds = 0
+        for k in range(raised):
+            c = trail[k]
+            i, j = c // values.shape[2], c % values.shape[2]
+            value = updated(values, pen, header, cap, 0, i, j)
+            if value < values[0, i, j]:
+                values[0, i, j] = value
+                trail[seeds] = c
+                seeds += 1
+        for k in range(cells.shape[0]):
+            for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
+                i, j = cells[k, 0] + PAD + da, cells[k, 1] + PAD + db
+                value = cap
+                if not blocked(pen[0, i, j]):  # the padding too: its cells' neighbours lie outside the arrays
+                    value = updated(values, pen, header, cap, 0, i, j)
+                if value < values[0, i, j]:
+                    values[0, i, j] = value
+                    trail[seeds] = i * values.shape[2] + j
+                    seeds += 1
+        return seeds
+
+    @ti.func
+    def lower_cut(values: ti.template(), pen: ti.template(), links: ti.template(), trail: ti.template(), seeds,
+                  focus_row, focus_col, budget):
+        """The lowering of a repair: Dial's search from the seeds (``trail``'s first ``seeds``, their values set),
+        as :func:`search` from the source. Seeds span many buckets, more than the ring holds: they wait in the
+        trail and join the ring once their bucket is less than half a ring ahead (the trail is scanned every half
+        ring, or jumped to when the ring runs dry). Stops once it has taken more than ``budget`` cells. Returns
+        (buckets emptied, cells listed or waiting, seeds waiting: the frontier a focused repair leaves, still in the
+        trail, cells taken)."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        mask = links.shape[1] - heads - 1
+        for slot in range(mask + 1):
+            links[0, heads + slot] = _UNLISTED
+        bucket, listed, emptied, scan_at, taken = 0, 0, 0, 0, 0
+        half = (mask + 1) // 2
+        while (listed > 0 or seeds > 0) and taken <= budget and not (
+                focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
+            if listed == 0:  # the ring ran dry: on to the nearest seed waiting
+                bucket = _NEVER
+                for k in range(seeds):
+                    c = trail[k]
+                    bucket = ti.min(bucket, ti.i32(priority(values[0, c // width, c % width], c // width,
+                                                            c % width, focus_row, focus_col)))
+                scan_at = bucket
+            if bucket >= scan_at:
+                waiting = 0
+                for k in range(seeds):
+                    c = trail[k]
+                    i, j = c // width, c % width
+                    due = ti.i32(priority(values[0, i, j], i, j, focus_row, focus_col))
+                    if links[1, c] == _UNLISTED and due <= bucket + half:
+                        link(links, heads, c, ti.max(bucket, due) & mask)
+                        listed += 1
+                    elif links[1, c] == _UNLISTED:
+                        trail[waiting] = c
+                        waiting += 1
+                seeds, scan_at = waiting, bucket + half  # a seed lowered and listed since waits no more
+            change = empty(values, pen, links, bucket, focus_row, focus_col)
+            listed += change[0]
+            taken += change[1]
+            bucket += 1
+            emptied += 1
+        return ti.Vector([emptied, listed + seeds, seeds, taken])
 
     @ti.func
     def hand_over(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick):
@@ -968,7 +1133,8 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 i, j = c // width, c % width
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
-    return SimpleNamespace(search=search, hand_over=hand_over)
+    return SimpleNamespace(search=search, hand_over=hand_over, raise_cut=raise_cut, seed_cut=seed_cut,
+                           lower_cut=lower_cut)
 
 
 class _KernelTypes:
@@ -1121,7 +1287,34 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         for _ in range(run[_SEARCH.go]):
             found = bucket_search(values, pen, header, links, cap, run[_SEARCH.focus_row], run[_SEARCH.focus_col])
             hand_over(values, stamps, keys, links, run[_SEARCH.tick])
-            result[_SEARCHED.buckets], result[_SEARCHED.frontier] = found[0], found[1]
+            result[_SEARCHED.buckets], result[_SEARCHED.frontier], result[_SEARCHED.taken] = found[0], found[1], found[2]
+
+
+    raise_cut, seed_cut, lower_cut = rules.raise_cut, rules.seed_cut, rules.lower_cut
+
+    @kernel
+    def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
+             trail: t.ints, cells: t.cells, cap: ti.f32, run: _vector(_MendRun), result: t.ints):
+        """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
+        thread (``_search_rules``: ``raise_cut``, ``seed_cut``, ``lower_cut``; ``run``: a _MendRun), the tiles then
+        handed over to settling for round ``tick``; ``result``: a _MendResult."""
+        ti.loop_config(serialize=True)
+        for _ in range(run[_MEND.go]):
+            budget = run[_MEND.budget]
+            raised = raise_cut(values, pen, header, links, trail, cells, cap, budget)
+            result[_MENDED.raised], result[_MENDED.spent] = raised, raised * RAISE_COST
+            if raised * RAISE_COST > budget:
+                continue
+            seeds = seed_cut(values, pen, header, trail, cells, raised, cap)
+            found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col],
+                              budget - raised * RAISE_COST)
+            result[_MENDED.spent] += found[3]
+            hand_over(values, stamps, keys, links, run[_MEND.tick])  # empties the buckets, given up or not
+            width = values.shape[2]
+            for k in range(found[2]):  # the seeds a focused mend left waiting join the frontier
+                i, j = trail[k] // width, trail[k] % width
+                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, run[_MEND.tick], 0, _LOWER, values[0, i, j])
+            result[_MENDED.buckets], result[_MENDED.frontier] = found[0], found[1]
 
 
 def _setup_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
@@ -1365,7 +1558,13 @@ class _LayerArrays:
         # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
         self.fresh = False
         self._links = None  # the search's buckets (``_search_rules``), made at the first search
+        self._trail = None  # a mend's raised cells, then its seeds (``_search_rules``), made at the first mend
+        # the cells edited since the layer was last at its fixed point (None: it is not, or may not be): a converge
+        # mends them cell by cell (:meth:`_mend`)
+        self.edits: list[np.ndarray] | None = None
         self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
+        self.searched: int | None = None  # cells the last search to the end took (``_mend``'s price of a restart)
+        self.converged_by = ""  # how the last converge ended: "search", "mend" or "rounds"
         self.activate_all()
 
     def allow_cost(self, cost: float) -> None:
@@ -1398,7 +1597,7 @@ class _LayerArrays:
         """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
         the old one must rise)."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
-        self.focus_move = None
+        self.focus_move = self.edits = None
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""
@@ -1407,6 +1606,7 @@ class _LayerArrays:
         self.keys.fill(math.inf)
         self.woken = self.tick
         self.pending = False
+        self.edits = None
 
     def deactivate_all(self) -> None:
         self.listed = False
@@ -1417,6 +1617,7 @@ class _LayerArrays:
         self.kernels.stamp_cells(stamps=self.stamps, pen=self.pen, origins=self.origins, cells=cells, tick=self.tick)
         self.listed = False
         self.woken = self.tick
+        self.edits = None
 
     def gather_penalties(self, grid: np.ndarray) -> None:
         """Every layer's penalties from the grid's, ``grid`` padded by PAD (0 free, inf blocked and outside)."""
@@ -1430,6 +1631,8 @@ class _LayerArrays:
                            run=_PaintRun(self.tick + int(self.round_open), int(self.listed)))  # an open round goes on
         self.woken = self.tick
         self._idle_sample = self.focus_move = None
+        if self.edits is not None:
+            self.edits.append(cells)
 
     def reset(self) -> None:
         """The values back to the initial state of eqs. 5 and 10 (the other buffer follows lazily, :meth:`iterate`);
@@ -1446,7 +1649,7 @@ class _LayerArrays:
         self.woken = self.tick
         self.pending = False
         self.fresh = True
-        self._idle_sample = self.focus_move = None
+        self._idle_sample = self.focus_move = self.edits = None
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
@@ -1535,7 +1738,7 @@ class _Layers(_LayerArrays):
             out[:k, :, self.columns] = self._idle_sample[1]
             self._count_iterations(k)
             return
-        self._idle_sample = None
+        self._idle_sample = self.edits = None  # iterations leave the values between fixed points
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
@@ -1625,6 +1828,8 @@ class _Layers(_LayerArrays):
             self.pending = False
         else:
             self.pending, self.woken = True, self.tick  # the active tiles wait for the next converge or iteration
+        self.edits = None if self.pending else []
+        self.converged_by = "rounds"
         return rounds
 
     def _search(self, focus: tuple[int, int] | None) -> int:
@@ -1643,15 +1848,50 @@ class _Layers(_LayerArrays):
         began = time.perf_counter()
         self.kernels.search(**arrays, run=_SearchRun(*(focus or _NO_FOCUS), self.tick, go=1))
         self.restart_s = time.perf_counter() - began
+        outcome = _SearchResult(*(int(value) for value in result))
+        if not outcome.frontier:
+            self.searched = outcome.taken
+        self._searched(bool(outcome.frontier), "search")
+        return outcome.buckets
+
+    def _searched(self, frontier: bool, by: str) -> None:
+        """The state after a search or a mend (``by``), which left a ``frontier`` (its tiles handed over) or none."""
+        self.converged_by = by
         self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
         self.swept = 0
-        outcome = _SearchResult(*(int(value) for value in result))
-        self.pending, self.woken = bool(outcome.frontier), self.tick
+        self.pending, self.woken = frontier, self.tick
         self._idle_sample = self.focus_move = None
+        self.edits = None if frontier else []
+
+    def _mend(self, focus: tuple[int, int] | None) -> int:
+        """converge() after edits on a layer at its fixed point before them: the cells the edits cut off rise to
+        the cap cell by cell, then Dial's search lowers them and whatever the edits opened from the seeds around
+        them (``_search_rules``: ``raise_cut``, ``seed_cut``, ``lower_cut``), so the work follows the cells that
+        change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
+        is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
+        the buckets emptied."""
+        cells = _cells_array(np.concatenate(self.edits))
+        if self._links is None:
+            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
+            self._links.fill(_UNLISTED)
+        if self._trail is None:
+            self._trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
+        result = np.zeros(len(_MendResult._fields), np.int32)
+        cells_in_layer = self.values.shape[1] * self.values.shape[2]
+        budget = int(MEND_SHARE * (cells_in_layer if self.searched is None else self.searched))
+        self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
+                          links=self._links, trail=self._trail, cells=cells, cap=self.cap,
+                          run=_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), result=result)
+        outcome = _MendResult(*(int(value) for value in result))
+        if outcome.spent > budget:  # most of the layer cut off or changed: a search from the source costs less
+            self.reset()
+            return self._search(focus)
+        self._searched(bool(outcome.frontier), "mend")
         return outcome.buckets
 
     def _repair(self, focus: tuple[int, int] | None) -> int:
-        """converge() after edits: rounds of tiles (:meth:`_settle`). Unfocused, in slices, given up for a restart
+        """converge() after edits: cell by cell (:meth:`_mend`) when the layer was at its fixed point before them,
+        else rounds of tiles (:meth:`_settle`). Unfocused, in slices, given up for a restart
         (:meth:`reset`, then :meth:`_search`) once they have taken RESTART_SHARE of the time the last search took,
         as a ski rental buys once renting has cost a share of the price: a change that lifts most of a maze (a box
         sealing off a pocket whose every cell must rise to the cap, which a search never visits) costs at most about
@@ -1659,6 +1899,8 @@ class _Layers(_LayerArrays):
         focused repair (the exact planner's tick) runs in one launch: slices and restarts raised its 95th percentile
         on 100 x 100 worlds from 0.8 to 1.5 ms (launches, and resets priced below their cost), and a planner that
         must bound its tick has ``max_sweeps``."""
+        if self.edits:
+            return self._mend(focus)
         if self.restart_s is None or focus is not None:  # no search yet to price a restart, or a planner's tick
             return self._settle(None, focus)
         allowance_s, spent_s, rounds, swept = RESTART_SHARE * self.restart_s, 0.0, 0, 0
@@ -1855,6 +2097,11 @@ class Engine:
         """Sweeps of the goal layer's tiles (passes over 8 x 8 cells) the last :meth:`converge` made on the calling
         thread."""
         return self._goal.swept
+
+    def converged_by(self) -> str:
+        """How the goal layer's last :meth:`converge` ended: "search" (from the initial state, or a restart),
+        "mend" (cell by cell after edits) or "rounds" (rounds of tiles)."""
+        return self._goal.converged_by
 
     def focus_successor(self, focus: tuple[int, int]) -> tuple[int, int] | None:
         """The goal layer's successor at ``focus``: as the last converge's last launch read it, when that converge

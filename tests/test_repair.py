@@ -228,13 +228,15 @@ def test_a_closed_door_sends_the_region_behind_it_round_by_the_far_door():
 
 
 @pytest.mark.parametrize("corridor", [1, 3])
-@pytest.mark.parametrize("restart_share", [1e-6, 1e6])
-def test_a_box_sealing_off_most_of_a_maze_restarts_or_repairs_to_the_same_values(monkeypatch, corridor,
-                                                                                restart_share):
+@pytest.mark.parametrize("before, restart_share", [("converged", 1e6), ("focused", 1e-6), ("focused", 1e6)])
+def test_a_box_sealing_off_most_of_a_maze_is_mended_restarted_or_repaired_to_the_same_values(monkeypatch, corridor,
+                                                                                           before, restart_share):
     """On a perfect maze a box across the corridor on the route from the farthest cell seals off everything behind
-    it. Given up for a restart (a tiny share: the decision is the benchmark's to time) the sealed cells are left at
-    the cap by the reset, never visited; repaired in rounds of tiles (no restart) they rise to it; either way the
-    result is a fresh converge's."""
+    it. Converged before the box, the layer is mended cell by cell: the sealed cells rise to the cap once each, in
+    one launch, with no rounds of tiles and no restart however dear a restart is priced. With a focused converge's
+    frontier still pending, rounds of tiles repair it, or are given up for a restart (a tiny share: the decision is
+    the benchmark's to time), which leaves the sealed cells at the cap unvisited. The result is a fresh
+    converge's every way."""
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
     monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1)
     occupied = maze(129, corridor, seed=corridor)
@@ -243,11 +245,37 @@ def test_a_box_sealing_off_most_of_a_maze_restarts_or_repairs_to_the_same_values
     far = np.unravel_index(np.argmax(np.where(np.isfinite(engine.goal_distances()), engine.goal_distances(), -1)),
                            occupied.shape)
     middle = engine.trace(0, tuple(int(v) for v in far), occupied.size)[-40]
+    if before == "focused":
+        engine.reset()
+        engine.converge(focus=(1, 1))  # the search stops at once: its frontier waits for the next converge
     reach = range(-corridor, corridor + 1)  # a box across the corridor, wherever the route runs in it
     box = np.array([(middle[0] + i, middle[1] + j) for i in reach for j in reach])
     box = box[~occupied[box[:, 0], box[:, 1]]]
     engine.set_cells(box, np.ones(len(box), bool))
     engine.converge()
-    assert (engine.swept() == 0) == (restart_share < 1)  # a search came last, or rounds of tiles did
+    expected = "search" if before == "converged" or restart_share < 1 else "rounds"  # a mend gives way to a restart
+    assert engine.converged_by() == expected and (engine.swept() > 0) == (expected == "rounds")
     assert np.isinf(engine.goal_distances()[far])
     assert_equal_to_a_fresh_converge(engine, {})
+
+
+@pytest.mark.parametrize("kind", ["maze", "random"])
+def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
+    """A small pocket of a maze or a random map (a ring round its farthest cell) sealed, then opened: both mended,
+    neither a search nor rounds of tiles, to a fresh converge's values."""
+    occupied = maze(129, 1, seed=1) if kind == "maze" else np.random.default_rng(3).random((100, 100)) < 0.2
+    occupied[1, 1] = False
+    engine = Engine(occupied, (1, 1))
+    engine.converge()
+    distances = engine.goal_distances()
+    far = np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), occupied.shape)
+    rows, cols = (slice(max(v - 8, 0), v + 9) for v in far)
+    ring = np.zeros(occupied.shape, bool)
+    ring[rows, cols] = True
+    ring[max(far[0] - 7, 0):far[0] + 8, max(far[1] - 7, 0):far[1] + 8] = False
+    cells = np.argwhere(ring & ~occupied)
+    for sealed in (True, False):
+        engine.set_cells(cells, np.full(len(cells), sealed))
+        engine.converge()
+        assert engine.converged_by() == "mend" and np.isinf(engine.goal_distances()[far]) == sealed
+        assert_equal_to_a_fresh_converge(engine, {})
