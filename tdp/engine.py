@@ -109,12 +109,15 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: mazes the dearest), each later one what the rate measured says fits in the rest, SLICE_GROWTH times the last at
 #: most (``sweeps_fitting``).
 RESTART_SHARE = 0.5
-#: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of the cells the last
-#: search took (a ski rental again: at most about 1 + MEND_SHARE times a restart, whatever the cut); raising a cell
+#: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of a restart's price, the
+#: cells the last search took and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a restart, whatever the cut); raising a cell
 #: costs about RAISE_COST cells a search takes (its relaxation, then the look at the cells that came through it:
 #: 40-50 ns against 19 ns measured on the 2-core VM), lowering one a cell.
 MEND_SHARE = 0.4
 RAISE_COST = 2
+#: A restart's price beyond its search: the reset fills the layer's arrays, about a search's cell per this many cells
+#: (a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole map).
+FILLS_PER_CELL = 16
 SLOWEST_SWEEP_S = 2.5e-6
 _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 #: A slice of a sliced converge (a repair's here, a budgeted tick's in :class:`tdp.ExactPlanner`) makes at most this
@@ -1386,28 +1389,34 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         key their lowering by ``freed_key``, the smallest over them (a way through several freed cells enters from
         one of their neighbours)."""
         rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-        freed = ti.math.inf
-        ti.loop_config(serialize=True)  # a few cells per edit: cheaper than waking the threads
-        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-            for lane in range(width):
-                a, b = window_cell(origins, cells, k, g, lane)
-                if 0 <= a < rows and 0 <= b < cols:
-                    store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
-                    if penalties[k] > MAX_COST:
-                        old = component(src[g, a + PAD, b + PAD], lane)
-                        store(src, g, a + PAD, b + PAD, lane, cap)
-                        store(dst, g, a + PAD, b + PAD, lane, cap)
-                        _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LIFT, old)
-        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-            for lane in range(width):
-                a, b = window_cell(origins, cells, k, g, lane)
-                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
-                    freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
-        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-            for lane in range(width):
-                a, b = window_cell(origins, cells, k, g, lane)
-                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
-                    _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LOWER, freed)
+        # A few cells per edit: cheaper than waking the threads. One outer loop, so that the three passes all run
+        # on the calling thread (a loop config holds for the next loop only: the later two woke the threads, twice,
+        # 0.2 ms of a small edit's 0.25)
+        ti.loop_config(serialize=True)
+        for _ in range(1):
+            freed = ti.math.inf
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols:
+                        store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
+                        if penalties[k] > MAX_COST:
+                            old = component(src[g, a + PAD, b + PAD], lane)
+                            store(src, g, a + PAD, b + PAD, lane, cap)
+                            store(dst, g, a + PAD, b + PAD, lane, cap)
+                            _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LIFT,
+                                        old)
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
+                        freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
+            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+                for lane in range(width):
+                    a, b = window_cell(origins, cells, k, g, lane)
+                    if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
+                        _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LOWER,
+                                    freed)
 
     @kernel
     def stamp_cells(stamps: t.stamps, pen: t.penalties, origins: t.cells, cells: t.cells, tick: ti.i32):
@@ -1878,7 +1887,8 @@ class _Layers(_LayerArrays):
             self._trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
         result = np.zeros(len(_MendResult._fields), np.int32)
         cells_in_layer = self.values.shape[1] * self.values.shape[2]
-        budget = int(MEND_SHARE * (cells_in_layer if self.searched is None else self.searched))
+        restart = cells_in_layer if self.searched is None else self.searched + cells_in_layer // FILLS_PER_CELL
+        budget = int(MEND_SHARE * restart)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self._links, trail=self._trail, cells=cells, cap=self.cap,
                           run=_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), result=result)
