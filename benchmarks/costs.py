@@ -31,6 +31,10 @@ from tdp.random_worlds import maze
 REPEATS, QUICK_REPEATS = 7, 3
 EPISODE_PAIRS = 3
 GRID_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite")
+#: The largest side (cells) of a map the planner episodes run on: D* Lite is Python, and the warehouse (1674 x 1006)
+#: would take it hours; the converged fields' paths above cover the warehouse.
+EPISODE_MAX_SIDE = 700
+DSTAR_MAX_SIDE = 400
 NAV2_INFLATION = {"cost_scaling_factor": 3.0, "inflation_radius": 1.05}  # per metre, metres
 ROS_MAPS = [("turtlebot3_world", ROOT / "tests" / "data" / "turtlebot3_world" / "map.yaml"),
             ("nav2 warehouse", NAV2 / "warehouse.yaml"), ("nav2 depot", NAV2 / "depot.yaml")]
@@ -175,8 +179,8 @@ def _mean_clearance_m(cells: list, away_m: np.ndarray) -> float:
 
 
 def grid_episodes(quick: bool) -> list[dict]:
-    """Every planner (GRID_PLANNERS) driving through three shuttling boxes on the ROS maps inflated by the robot,
-    binary and with nav2's inflation cost (the same boxes: they are placed by occupancy): reached, collisions, the
+    """Every planner (GRID_PLANNERS) driving through three shuttling boxes on the ROS maps inflated by the robot (of
+    at most EPISODE_MAX_SIDE cells a side; D* Lite on those of DSTAR_MAX_SIDE), binary and with nav2's inflation cost (the same boxes: they are placed by occupancy): reached, collisions, the
     trajectory's mean clearance (metres to the nearest obstacle of the map as loaded) and its length."""
     from tdp.dstar_lite import DStarLite
     from tdp.random_worlds import boxes_on_map
@@ -185,6 +189,8 @@ def grid_episodes(quick: bool) -> list[dict]:
     rows = []
     for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
         grid = tdp.load_map(path)
+        if max(grid.shape) > EPISODE_MAX_SIDE:
+            continue
         radius = ROBOT_RADIUS_M / grid.resolution
         maps = {"binary": grid.inflate(radius), "costed": grid.inflate(radius, **NAV2_INFLATION)}
         away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
@@ -193,6 +199,8 @@ def grid_episodes(quick: bool) -> list[dict]:
         for pair in range(1 if quick else EPISODE_PAIRS):
             start, goal = (tuple(int(v) for v in free[rng.integers(len(free))]) for _ in range(2))
             for planner in GRID_PLANNERS[:2] if quick else GRID_PLANNERS:
+                if planner == "dstar-lite" and max(grid.shape) > DSTAR_MAX_SIDE:
+                    continue
                 row = {"map": name, "pair": pair, "planner": planner}
                 for kind, which in maps.items():
                     world = boxes_on_map(which, start, goal, boxes=3, seed=pair)
