@@ -180,8 +180,9 @@ def _mean_clearance_m(cells: list, away_m: np.ndarray) -> float:
 
 def grid_episodes(quick: bool) -> list[dict]:
     """Every planner (GRID_PLANNERS) driving through three shuttling boxes on the ROS maps inflated by the robot (of
-    at most EPISODE_MAX_SIDE cells a side; D* Lite on those of DSTAR_MAX_SIDE), binary and with nav2's inflation cost (the same boxes: they are placed by occupancy): reached, collisions, the
-    trajectory's mean clearance (metres to the nearest obstacle of the map as loaded) and its length."""
+    at most EPISODE_MAX_SIDE cells a side; D* Lite on those of DSTAR_MAX_SIDE), binary and with nav2's inflation cost
+    (the same boxes: they are placed by occupancy): reached, collisions, the trajectory's mean clearance (metres to
+    the nearest obstacle of the map as loaded) and its length."""
     from tdp.dstar_lite import DStarLite
     from tdp.random_worlds import boxes_on_map
     from tdp.simulate import run_planner, start_grid

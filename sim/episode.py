@@ -139,7 +139,9 @@ class _Run:
         """Rasterise, send the changed cells and the target's move, run the planner's tick."""
         now = self.static | self.world.moving_footprints(self.sim.inflate_m, (tick - 1) * self.tick_s,
                                                          self.sim.horizon_s)
-        cost = self.sim.costs(now, self.cell_m, self.scenario.grid.cost) if self.sim.cost_scaling_factor is not None else None
+        cost = None  # the world's own costs stay; the inflation's follow the boxes
+        if self.sim.cost_scaling_factor is not None:
+            cost = self.sim.costs(now, self.cell_m, self.scenario.grid.cost)
         self.feed.update(self.navigator, now, self.scenario.target(tick), cost)
         self.navigator.move_robot(self.robot_cell())
         began = time.perf_counter()

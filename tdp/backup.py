@@ -149,8 +149,9 @@ def plan_backup(graph: NodeGraph, driven_length: Callable[[int, int], float]) ->
 def driven_search(graph: NodeGraph, driven_length: Callable[[int, int], float]) -> tuple[list[int], float] | None:
     """Uniform-cost search R -> G over edges the layers really drive (lazily, ARCHITECTURE §5.5): each edge a-b of a
     found path is reweighted once to ``max(weight, driven_length(a, b))`` (inf drops it: b's layer does not lead
-    from a's cell to b yet; readings are lower bounds of driven costs, so the last path is the cheapest driven one), and the search runs again until every edge of its path has been driven. Returns
-    (path, cost) or None. Reweights ``graph`` in place."""
+    from a's cell to b yet; readings are lower bounds of driven costs, so the last path is the cheapest driven one),
+    and the search runs again until every edge of its path has been driven. Returns (path, cost) or None. Reweights
+    ``graph`` in place."""
     driven: set[tuple[int, int]] = set()
     while True:
         found = uniform_cost_search(graph.neighbours, graph.robot_id, graph.goal_id)

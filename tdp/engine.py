@@ -110,9 +110,9 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: most (``sweeps_fitting``).
 RESTART_SHARE = 0.5
 #: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of a restart's price, the
-#: cells the last search took and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a restart, whatever the cut); raising a cell
-#: costs about RAISE_COST cells a search takes (its relaxation, then the look at the cells that came through it:
-#: 40-50 ns against 19 ns measured on the 2-core VM), lowering one a cell.
+#: cells the last search took and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a
+#: restart, whatever the cut); raising a cell costs about RAISE_COST cells a search takes (its relaxation, then the
+#: look at the cells that came through it: 40-50 ns against 19 ns measured on the 2-core VM), lowering one a cell.
 MEND_SHARE = 0.4
 RAISE_COST = 2
 #: A restart's price beyond its search: the reset fills the layer's arrays, about a search's cell per this many cells
@@ -933,7 +933,6 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
     ``_bucket_rules``."""
     blocked, crossing, moves, move_cost, penalty = cell.blocked, cell.crossing, cell.moves, cell.move_cost, cell.penalty
-    updated = cell.updated
     buckets = _bucket_rules()
     unlink, link = buckets.unlink, buckets.link
 
@@ -1000,6 +999,34 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
                     link(links, heads, there, due & mask)
         return ti.Vector([listed, taken])
+
+    @ti.func
+    def hand_over(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick):
+        """After a search: every tile settled (lowering key _SETTLED, no lifting key) but those within reach of a
+        cell still listed (the frontier a focused search leaves), which are active for round ``tick`` with that
+        cell's value as lowering key (``_stamp_near``): the invariants of settling (``settle_tile``) hold, and the
+        rounds of a later converge go on from the frontier. Empties the buckets."""
+        for g in range(stamps.shape[0]):
+            for a in range(stamps.shape[1]):
+                for b in range(stamps.shape[2]):
+                    stamps[g, a, b] = -1
+                    keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        for slot in range(links.shape[1] - heads):
+            while links[0, heads + slot] >= 0:
+                c = links[0, heads + slot]
+                unlink(links, heads, c)
+                i, j = c // width, c % width
+                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
+
+    return SimpleNamespace(search=search, hand_over=hand_over, empty=empty, priority=priority, link=link)
+
+
+def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
+    them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
+    the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
+    moves, move_cost, blocked, updated = cell.moves, cell.move_cost, cell.blocked, cell.updated
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, top, i, j):
@@ -1073,6 +1100,14 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     seeds += 1
         return seeds
 
+    return SimpleNamespace(raise_cut=raise_cut, seed_cut=seed_cut)
+
+
+def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
+    """The second half of a mend: ``lower_cut``, Dial's search from the seeds, with the search's rules
+    (``searching``: :func:`_search_rules`' buckets and A*'s order with a focus)."""
+    empty, priority, link = searching.empty, searching.priority, searching.link
+
     @ti.func
     def lower_cut(values: ti.template(), pen: ti.template(), links: ti.template(), trail: ti.template(), seeds,
                   focus_row, focus_col, budget):
@@ -1117,27 +1152,7 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
             emptied += 1
         return ti.Vector([emptied, listed + seeds, seeds, taken])
 
-    @ti.func
-    def hand_over(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick):
-        """After a search: every tile settled (lowering key _SETTLED, no lifting key) but those within reach of a
-        cell still listed (the frontier a focused search leaves), which are active for round ``tick`` with that
-        cell's value as lowering key (``_stamp_near``): the invariants of settling (``settle_tile``) hold, and the
-        rounds of a later converge go on from the frontier. Empties the buckets."""
-        for g in range(stamps.shape[0]):
-            for a in range(stamps.shape[1]):
-                for b in range(stamps.shape[2]):
-                    stamps[g, a, b] = -1
-                    keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
-        width, heads = values.shape[2], values.shape[1] * values.shape[2]
-        for slot in range(links.shape[1] - heads):
-            while links[0, heads + slot] >= 0:
-                c = links[0, heads + slot]
-                unlink(links, heads, c)
-                i, j = c // width, c % width
-                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
-
-    return SimpleNamespace(search=search, hand_over=hand_over, raise_cut=raise_cut, seed_cut=seed_cut,
-                           lower_cut=lower_cut)
+    return SimpleNamespace(lower_cut=lower_cut)
 
 
 class _KernelTypes:
@@ -1290,10 +1305,12 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         for _ in range(run[_SEARCH.go]):
             found = bucket_search(values, pen, header, links, cap, run[_SEARCH.focus_row], run[_SEARCH.focus_col])
             hand_over(values, stamps, keys, links, run[_SEARCH.tick])
-            result[_SEARCHED.buckets], result[_SEARCHED.frontier], result[_SEARCHED.taken] = found[0], found[1], found[2]
+            result[_SEARCHED.buckets], result[_SEARCHED.frontier] = found[0], found[1]
+            result[_SEARCHED.taken] = found[2]
 
 
-    raise_cut, seed_cut, lower_cut = rules.raise_cut, rules.seed_cut, rules.lower_cut
+    raising = _raise_rules(cell)
+    raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(rules).lower_cut
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
@@ -1482,7 +1499,7 @@ class _Kernels:
 
     def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool):
         init_taichi()
-        self.lanes = lanes
+        self.lanes, self.weighted = lanes, weighted
         cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting), weighted)
         types = _KernelTypes(lanes)
         made = []
@@ -1576,12 +1593,11 @@ class _LayerArrays:
         self.converged_by = ""  # how the last converge ended: "search", "mend" or "rounds"
         self.activate_all()
 
-    def allow_cost(self, cost: float) -> None:
-        """Make room in the search's ring for free cells of cost up to ``cost`` (the buckets are made again at the
-        next search if it needs more)."""
-        ring = _search_buckets(cost)
-        if ring > self.ring:
-            self.ring, self._links = ring, None
+    def reprice(self, cells: np.ndarray, costs: np.ndarray) -> None:
+        """New costs for free ``cells`` of a weighted layer: each painted blocked, then free at its cost (what went
+        through it is lifted, then lowered)."""
+        self.paint(cells, np.full(len(cells), np.inf, np.float32))
+        self.paint(cells, costs.astype(np.float32))
 
     def _array(self, shape: tuple[int, int, int]):
         if self.lanes:
@@ -1633,7 +1649,13 @@ class _LayerArrays:
         self.kernels.gather_penalties(pen=self.pen, origins=self.origins, grid=grid)
 
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
-        """Set the penalties of ``cells`` (0 free, inf occupied) and wake the tiles around them."""
+        """Set the penalties of ``cells`` (0 free, inf occupied; a weighted layer's free cells their cost, which
+        widens the search's ring if it needs more buckets: made again at the next search) and wake the tiles around
+        them."""
+        if self.kernels.weighted:
+            ring = _search_buckets(float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0)))
+            if ring > self.ring:
+                self.ring, self._links = ring, None
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap,
@@ -1940,6 +1962,19 @@ def _cells_array(cells) -> np.ndarray:
     return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
 
 
+def _changed_costs(current: np.ndarray | None, cells: np.ndarray, costs) -> tuple[np.ndarray, np.ndarray]:
+    """The ``cells`` whose cost ``costs`` (a number or one per cell) changes from ``current`` (the map's costs), and
+    their new costs (float32); a ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
+    if current is None:
+        raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
+    costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
+    wrong = ~((costs >= 1) & (costs <= MAX_COST))  # NaN is wrong too
+    if wrong.any():
+        raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {costs[wrong][0]}")
+    changed = current[cells[:, 0], cells[:, 1]] != costs.astype(np.float32)
+    return cells[changed], costs[changed].astype(np.float32)
+
+
 def _edit(cells, occupied) -> tuple[np.ndarray, np.ndarray]:
     """Cells as kernels take them and one occupancy flag per cell."""
     cells = _cells_array(cells)
@@ -2009,7 +2044,7 @@ class Engine:
             self._layers.append(self._windows)
         grids: dict[bool, np.ndarray] = {}  # the padded penalties by whether a kind is weighted, each built once
         for layers in self._layers:
-            weighted = self._weighted(layers)
+            weighted = layers.kernels.weighted
             if weighted not in grids:
                 grids[weighted] = np.full((self.rows + 2 * PAD, self.cols + 2 * PAD), np.inf, np.float32)
                 grids[weighted][PAD:-PAD, PAD:-PAD] = self._penalties(layers, self.occupied, slice(None))
@@ -2058,31 +2093,22 @@ class Engine:
     def converge(self, max_rounds: int | None = None, focus: tuple[int, int] | None = None,
                  max_sweeps: int = 0) -> int:
         """Relax from the current values to the fixed point of the current map and goal: the setup phase, and the
-        exact repair after edits (:meth:`_Layers.converge`: a raise wave, then lowering). Returns the rounds (or
-        the goal layer's search buckets) it took, the larger count of the two kinds of layer; ``iterations`` is 0
-        after it.
+        exact repair after edits. Returns the rounds (or the goal layer's search buckets) it took, the larger count
+        of the two kinds of layer; ``iterations`` is 0 after it.
 
-        From the initial state (construction, :meth:`reset`, a goal move) the goal layer is searched cell by cell
-        instead (:meth:`_Layers._search`: Dijkstra's order with buckets one cell wide, A*'s with a focus), unless
-        ``max_rounds`` or ``max_sweeps`` limits the converge; an unfocused repair without limits gives up for such
-        a search once it has taken RESTART_SHARE of the last one's time (:meth:`_Layers._repair`).
+        The goal layer is searched cell by cell from the initial state (construction, :meth:`reset`, a goal move:
+        Dijkstra's order with buckets one cell wide, A*'s with a focus) and mended cell by cell after edits when it
+        was at its fixed point before them (:meth:`_Layers._mend`). Otherwise, with ``max_rounds`` or
+        ``max_sweeps``, and for node layers, rounds of tiles settle in place (delta-stepping buckets, alternating
+        diagonal sweeps), an unlimited repair giving way to a restart past a share of a search's price
+        (:meth:`_Layers._repair`); :meth:`converged_by` says which ran. The fixed point of eqs. 5 and 10 is unique,
+        so the result equals synchronous iteration's from the initial state, bit for bit.
 
-        ``focus``, a cell (row, col): a focused repair, as D* Lite's. The goal layer settles in order of key plus
-        Euclidean distance from the cell and stops as soon as nothing pending can change the cell's value or the
-        successors from it to the goal: they are then those of the fixed point exactly, and the rest of the layer
-        waits (:meth:`pending`) until a later converge needs it. Node layers always converge fully.
-
-        ``max_sweeps`` (0: no limit) stops the goal layer's settling on the calling thread after that many sweeps
-        (passes over an 8 x 8 tile: settling a tile takes 1 to 32), in the middle of a round if need be
-        (:meth:`cut_short` then says so, and the next converge goes on): the unit of an anytime repair's budget,
-        since a round can be long and a tile's cost varies 30-fold. :meth:`swept` counts them.
-
-        Each round settles the due active tiles in place (several sweeps in cache, ordered by delta-stepping buckets
-        of SETTLE_BAND, PACKED_SETTLE_BAND for node layers, and alternating diagonal directions) and wakes the
-        neighbours its border changes reach; it ends when no tile changes. The fixed point of eqs. 5 and 10 is
-        unique, so the result equals what synchronous iterations reach from the initial state, bit for bit. After a
-        goal move the goal layer starts again from the initial state (every value depended on the old goal). While
-        few tiles are active, rounds run one after another in a single launch.
+        ``focus``, a cell (row, col): a focused repair, as D* Lite's - the goal layer stops as soon as nothing
+        pending can change the cell's value or the successors from it to the goal, the rest waiting
+        (:meth:`pending`); node layers always converge fully. ``max_sweeps`` (0: no limit) stops the goal layer's
+        settling on the calling thread after that many sweeps of an 8 x 8 tile, mid-round if need be
+        (:meth:`cut_short`; :meth:`swept` counts them): the unit of an anytime repair's budget.
         """
         if self._goal_moved:
             self._goal.reset()
@@ -2099,18 +2125,15 @@ class Engine:
         return any(layers.pending for layers in self._layers)
 
     def cut_short(self) -> bool:
-        """Whether the last :meth:`converge` stopped at ``max_rounds`` or ``max_sweeps``, before the fixed point or
-        its focus."""
+        """Whether the last :meth:`converge` stopped at ``max_rounds`` or ``max_sweeps`` (before its end)."""
         return any(layers.cut_short for layers in self._layers)
 
     def swept(self) -> int:
-        """Sweeps of the goal layer's tiles (passes over 8 x 8 cells) the last :meth:`converge` made on the calling
-        thread."""
+        """Sweeps of 8 x 8 goal-layer tiles the last :meth:`converge` made on the calling thread."""
         return self._goal.swept
 
     def converged_by(self) -> str:
-        """How the goal layer's last :meth:`converge` ended: "search" (from the initial state, or a restart),
-        "mend" (cell by cell after edits) or "rounds" (rounds of tiles)."""
+        """How the goal layer's last :meth:`converge` went: "search", "mend" (cell by cell) or "rounds" (of tiles)."""
         return self._goal.converged_by
 
     def focus_successor(self, focus: tuple[int, int]) -> tuple[int, int] | None:
@@ -2138,28 +2161,15 @@ class Engine:
 
     def set_costs(self, cells: np.ndarray, costs) -> None:
         """Set the traversal cost of ``cells`` (n, 2) to ``costs`` (a number or one per cell, 1 to MAX_COST) on a
-        map with costs; an occupied cell keeps its new cost for when it is freed. The goal layer repairs as after
-        occupancy edits: a changed free cell is lifted as if blocked and lowered again at its new cost.
+        map with costs (an occupied cell keeps it for when it is freed); the goal layer repairs as after an edit.
 
         Raises:
             ValueError: the engine was built without costs, or a cost is not a number from 1 to MAX_COST.
         """
-        if self.cost is None:
-            raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
-        cells = _cells_array(cells)
-        costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
-        if not np.all((costs >= 1) & (costs <= MAX_COST)):  # NaN fails too
-            wrong = costs[~((costs >= 1) & (costs <= MAX_COST))][0]
-            raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {wrong}")
-        costs = costs.astype(np.float32)
-        at = (cells[:, 0], cells[:, 1])
-        changed = self.cost[at] != costs
-        cells, costs = cells[changed], costs[changed]
+        cells, costs = _changed_costs(self.cost, _cells_array(cells), costs)
         self.cost[cells[:, 0], cells[:, 1]] = costs
-        self._goal.allow_cost(float(costs.max(initial=1.0)))
-        free = cells[~self.occupied[cells[:, 0], cells[:, 1]]]
-        for occupied in (True, False):
-            self._paint([self._goal], free, np.full(len(free), occupied))
+        free = ~self.occupied[cells[:, 0], cells[:, 1]]
+        self._goal.reprice(cells[free], costs[free])
 
     def set_node_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` occupied or free in the node layers only (e.g. cells a box is predicted to enter); the goal
@@ -2172,14 +2182,10 @@ class Engine:
         for layers in kinds:
             layers.paint(cells, self._penalties(layers, occupied, (cells[:, 0], cells[:, 1])))
 
-    def _weighted(self, layers: "_Layers") -> bool:
-        """Whether a kind of layer weighs its moves by the map's costs: the goal layer on a map with costs."""
-        return layers is self._goal and self.cost is not None
-
     def _penalties(self, layers: "_Layers", occupied: np.ndarray, where) -> np.ndarray:
         """The penalties of the cells ``where`` selects (an index into the map) for a kind of layer, whose occupancy
         is ``occupied``: inf blocked; free 0, or the cell's cost for the weighted goal layer."""
-        free = self.cost[where] if self._weighted(layers) else 0.0
+        free = self.cost[where] if layers.kernels.weighted else 0.0
         return np.where(occupied, np.inf, free).astype(np.float32)
 
     def set_goal(self, goal: tuple[int, int]) -> None:

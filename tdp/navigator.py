@@ -90,8 +90,7 @@ class Navigator:
         self.readings.cover()
 
     def update_costs(self, cells, costs) -> None:
-        """Set the traversal costs of ``cells`` (a mask or (row, col) cells) to ``costs`` (a number or one per cell)
-        on a map with costs: the goal layer's (:meth:`tdp.engine.Engine.set_costs`; node layers measure cells)."""
+        """Set the goal layer's traversal costs of ``cells`` (a mask or cells) to ``costs`` (node layers: cells)."""
         self.engine.set_costs(cells_from(self.grid.shape, cells, "update_costs"), costs)
         self.readings.edited()
 
@@ -216,13 +215,10 @@ class Navigator:
         budget = cost_from_robot(self.backup, self._subgoal_at_robot()) * (1 + self.config.evidence_slack)
         max_steps = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
         chain = self._goal_chain(max_steps)
-        if chain is None:
+        costs = None if chain is None else chain_costs(chain, self.engine.cost)
+        if costs is None or costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
             return False
-        costs = chain_costs(chain, self.engine.cost)
-        if costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
-            return False
-        near = cells_near(chain_costs(chain), self.spacing)
-        values = self.engine.sample(chain[:near + 1])[:, 0].astype(np.float64)
+        values = self.engine.sample(chain[:cells_near(chain_costs(chain), self.spacing) + 1])[:, 0].astype(np.float64)
         return goal_route_wins(costs, values, budget, settled_route, self.config.rise, self.config.settled_cells)
 
     def _subgoal_at_robot(self) -> float:
@@ -264,9 +260,8 @@ class Navigator:
     # -- reading the plan ----------------------------------------------------------------------------------------
     def node_edges(self) -> list[tuple[int, int]]:
         """The node pairs (a < b) connected in the node graph now (eq. 14), e.g. for a figure."""
-        if not self.config.accelerating:
-            return []
-        return [(a, b) for a, b, _ in self.readings.graph(self.robot, self.goal).edges()]
+        graph = self.readings.graph(self.robot, self.goal) if self.config.accelerating else None
+        return [(a, b) for a, b, _ in graph.edges()] if graph else []
 
     def current_path(self) -> list[Cell]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""
@@ -276,9 +271,7 @@ class Navigator:
     def route(self, steps: int) -> list[Cell]:
         """Up to ``steps`` cells the robot would follow from R now: successors of the goal layer, or in backup mode
         of the subgoal's layer (for a controller's look-ahead). Empty at the goal or where the layer gives no move."""
-        if self.robot == self.goal:
-            return []
-        return self.engine.trace(self._followed_layer(), self.robot, steps)
+        return [] if self.robot == self.goal else self.engine.trace(self._followed_layer(), self.robot, steps)
 
     def _followed_layer(self) -> int:
         """The layer the robot follows: the subgoal's in backup mode, else 0 (the goal layer)."""
