@@ -17,7 +17,8 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(PY) -m sim compare --scenario sudden-blockage --updates 1 --animate --out demo-output
+	$(PY) -m sim compare --scenario sudden-blockage --updates 1 --cost-scaling-factor 3 --inflation-radius 0.8 --animate \
+		--out demo-output
 
 test: $(STAMP)
 	$(PY) -m pytest -q

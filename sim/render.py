@@ -1,6 +1,7 @@
 """Top-down figure of a PyBullet episode: map, nodes, the robot's trace coloured by mode, obstacles' traces."""
 from __future__ import annotations
 
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
@@ -8,6 +9,17 @@ import numpy as np
 import tdp
 from tdp.config import planner_label
 from tdp.plot import MODE_COLOURS, box_patch, cost_bar, draw_map, pyplot, save_figure
+
+from .episode import SimConfig
+
+
+def _static_costs(scenario: tdp.Scenario, settings: dict) -> np.ndarray | None:
+    """The traversal costs the planner saw on the static map (the world's, raised by the run's inflation cost round
+    the grown walls, which show at the dearest cost; the boxes' moved with them), or None on a binary run."""
+    sim = SimConfig(**{field.name: settings[field.name] for field in fields(SimConfig)})
+    grown = scenario.grid.inflate(sim.inflate_m / settings["cell_m"]).occupied
+    cost = sim.costs(grown, settings["cell_m"], scenario.grid.cost)
+    return None if cost is None else np.where(grown, cost.max(), cost)
 
 
 def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
@@ -19,7 +31,7 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
         return np.asarray(x) / cell - 0.5, rows - np.asarray(y) / cell - 0.5
 
     fig, ax = plt.subplots(figsize=(7, 7.4))
-    cost_bar(fig, ax, draw_map(ax, scenario.grid.occupied, scenario.grid.cost))
+    cost_bar(fig, ax, draw_map(ax, scenario.grid.occupied, _static_costs(scenario, metrics["sim"])))
     nodes = np.array(metrics["nodes"]).reshape(-1, 2)
     if len(nodes):
         ax.plot(nodes[:, 1], nodes[:, 0], "o", mfc="none", mec="tab:purple", ms=6, label="accelerating nodes")
