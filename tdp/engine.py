@@ -1967,7 +1967,10 @@ def _changed_costs(current: np.ndarray | None, cells: np.ndarray, costs) -> tupl
     their new costs (float32); a ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
     if current is None:
         raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
-    costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
+    try:
+        costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
+    except (TypeError, ValueError):
+        raise ValueError(f"costs must be a number or one per cell ({len(cells)}), got {np.shape(costs)}") from None
     wrong = ~((costs >= 1) & (costs <= MAX_COST))  # NaN is wrong too
     if wrong.any():
         raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {costs[wrong][0]}")

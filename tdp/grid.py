@@ -247,7 +247,7 @@ def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: floa
         ValueError: an unknown format, a malformed file, ``trinary_costmap=False`` for a map that is not ROS's,
             one of the two inflation parameters without the other.
     """
-    grid = _load(Path(path), unknown_is_free, threshold, trinary_costmap)
+    grid = _load(Path(path), unknown_is_free, threshold, checks.flag(trinary_costmap, "trinary_costmap"))
     if cost_scaling_factor is None and inflation_radius is None:
         return grid
     return grid.inflate(0, cost_scaling_factor=cost_scaling_factor, inflation_radius=inflation_radius)
