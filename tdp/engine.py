@@ -1583,8 +1583,8 @@ class _LayerArrays:
         self.focus_move: tuple[tuple[int, int], int] | None = None
         # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
         self.fresh = False
-        self._links = None  # the search's buckets (``_search_rules``), made at the first search
-        self._trail = None  # a mend's raised cells, then its seeds (``_search_rules``), made at the first mend
+        self.links = None  # the search's buckets (``_search_rules``), made at the first search
+        self.trail = None  # a mend's raised cells, then its seeds (``_raise_rules``), made at the first mend
         # the cells edited since the layer was last at its fixed point (None: it is not, or may not be): a converge
         # mends them cell by cell (:meth:`_mend`)
         self.edits: list[np.ndarray] | None = None
@@ -1655,7 +1655,7 @@ class _LayerArrays:
         if self.kernels.weighted:
             ring = _search_buckets(float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0)))
             if ring > self.ring:
-                self.ring, self._links = ring, None
+                self.ring, self.links = ring, None
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap,
@@ -1701,6 +1701,9 @@ class _LayerArrays:
         if self.kernels.warmed:
             return
         scratch = _LayerArrays(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
+        # the search's and the mend's arrays as Taichi ndarrays, as every later launch passes them (a numpy array
+        # compiles another kernel: the first mend compiled for 1.6 s inside a planner's tick)
+        scratch.links, scratch.trail = ti.ndarray(ti.i32, (2, IDLE_ENTRIES)), ti.ndarray(ti.i32, (IDLE_ENTRIES,))
         for kernel in self.kernels.all:
             kernel(**{parameter.name: _idle_argument(parameter, scratch)
                       for parameter in inspect.signature(kernel).parameters.values()})
@@ -1868,12 +1871,10 @@ class _Layers(_LayerArrays):
         order and stop with a focus) takes each cell about once however the map winds, where rounds of tiles settle
         a tile again each time the front comes back to it (a maze's corridors). A focused search hands its frontier
         over to the settling rounds of later converges (:attr:`pending`). Returns the buckets emptied."""
-        if self._links is None:
-            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
-            self._links.fill(_UNLISTED)
+        self._make_links()
         result = np.zeros(len(_SearchResult._fields), np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                      links=self._links, cap=self.cap, result=result)
+                      links=self.links, cap=self.cap, result=result)
         if self.restart_s is None:  # compiled (if not yet) by a launch that does nothing, so the time is the search's
             self.kernels.search(**arrays, run=_SearchRun(*_NO_FOCUS, self.tick, go=0))
         began = time.perf_counter()
@@ -1894,6 +1895,12 @@ class _Layers(_LayerArrays):
         self._idle_sample = self.focus_move = None
         self.edits = None if frontier else []
 
+    def _make_links(self) -> None:
+        """The search's buckets (a cell's links, then the ring's heads), made at the first search or mend."""
+        if self.links is None:
+            self.links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
+            self.links.fill(_UNLISTED)
+
     def _mend(self, focus: tuple[int, int] | None) -> int:
         """converge() after edits on a layer at its fixed point before them: the cells the edits cut off rise to
         the cap cell by cell, then Dial's search lowers them and whatever the edits opened from the seeds around
@@ -1902,17 +1909,15 @@ class _Layers(_LayerArrays):
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
         cells = _cells_array(np.concatenate(self.edits))
-        if self._links is None:
-            self._links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
-            self._links.fill(_UNLISTED)
-        if self._trail is None:
-            self._trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
+        self._make_links()
+        if self.trail is None:
+            self.trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
         result = np.zeros(len(_MendResult._fields), np.int32)
         cells_in_layer = self.values.shape[1] * self.values.shape[2]
         restart = cells_in_layer if self.searched is None else self.searched + cells_in_layer // FILLS_PER_CELL
         budget = int(MEND_SHARE * restart)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                          links=self._links, trail=self._trail, cells=cells, cap=self.cap,
+                          links=self.links, trail=self.trail, cells=cells, cap=self.cap,
                           run=_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), result=result)
         outcome = _MendResult(*(int(value) for value in result))
         if outcome.spent > budget:  # most of the layer cut off or changed: a search from the source costs less

@@ -267,3 +267,30 @@ def test_sweeps_fitting_is_what_fits_between_its_bounds():
     assert engine_module.sweeps_fitting(1e-3, 2e-6, 16, 100) == 100
     assert engine_module.sweeps_fitting(-1e-3, 2e-6, 16, 100) == 16
     assert engine_module.sweeps_fitting(1e9, 1e-9, 16, 2**40) == engine_module._NEVER
+
+
+def test_warm_up_compiles_every_kernel_a_field_then_launches():
+    """Each distinct argument type compiles a kernel anew (a numpy array and a Taichi ndarray differ): the warm-up
+    must launch each kernel as later launches do, or the first search or mend compiles inside a planner's tick (the
+    mend's first launch took 1.6 s there). Every launch below - a search, paint, a mend, rounds of tiles, a focused
+    and a sliced converge, iterations, samples, traces - compiles nothing the warm-up did not."""
+    from tdp.engine import _kernels_for
+
+    occupied = np.zeros((40, 40), bool)
+    engine = Engine(occupied, (0, 0), cost=np.ones((40, 40)))
+    engine.warm_up()
+    kernels = _kernels_for(0, 16, False, True).all
+    compiled = [len(kernel._primal.compiled_kernels) for kernel in kernels]
+    engine.converge()
+    engine.set_cells(np.array([(5, 5), (6, 6)]), np.array([True, True]))
+    engine.set_costs(np.array([(9, 9)]), 3.0)
+    engine.converge()
+    engine.set_cells(np.array([(20, 5)]), np.array([True]))
+    engine.converge(focus=(39, 39))
+    engine.converge(max_sweeps=4)
+    engine.step(3)
+    engine.sample(np.array([(1, 1)]))
+    engine.trace(0, (39, 39), 10)
+    engine.set_goal((10, 10))
+    engine.converge(focus=(0, 0))
+    assert [len(kernel._primal.compiled_kernels) for kernel in kernels] == compiled
