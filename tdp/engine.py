@@ -125,7 +125,7 @@ _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 #: need not hold for the next's.
 SLICE_GROWTH = 4
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
-_STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_search_rules``' ``mend``)
+_STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_raise_rules``)
 #: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
@@ -201,8 +201,8 @@ class _SearchResult(NamedTuple):
 
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
-    stamped for, the most cells it may raise before it gives way to a restart, and whether to mend (0: a launch
-    that only compiles)."""
+    stamped for, its budget (cells a search takes: past it, the mend gives way to a restart) and whether to mend
+    (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -914,6 +914,12 @@ def _bucket_rules() -> SimpleNamespace:
         links[1, c] = _UNLISTED
 
     @ti.func
+    def clear(links: ti.template(), heads):
+        """Empty every bucket of the ring (its heads start at ``heads``)."""
+        for slot in range(links.shape[1] - heads):
+            links[0, heads + slot] = _UNLISTED
+
+    @ti.func
     def link(links: ti.template(), heads, c, slot):
         """Put cell ``c`` (in no bucket) first in bucket ``slot``."""
         first = links[0, heads + slot]
@@ -922,7 +928,7 @@ def _bucket_rules() -> SimpleNamespace:
             links[1, first] = c
         links[0, heads + slot] = c
 
-    return SimpleNamespace(unlink=unlink, link=link)
+    return SimpleNamespace(unlink=unlink, link=link, clear=clear)
 
 
 def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
@@ -934,7 +940,7 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
     ``_bucket_rules``."""
     blocked, crossing, moves, move_cost, penalty = cell.blocked, cell.crossing, cell.moves, cell.move_cost, cell.penalty
     buckets = _bucket_rules()
-    unlink, link = buckets.unlink, buckets.link
+    unlink, link, clear = buckets.unlink, buckets.link, buckets.clear
 
     @ti.func
     def priority(value, i, j, focus_row, focus_col):
@@ -950,11 +956,11 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                focus_row, focus_col):
         """Lower ``values`` (the initial state: the cap everywhere, the source aside) bucket by bucket from the
         source; with a focus (padded coordinates; row -1: none) stop once the bucket reached is SEARCH_MARGIN past
-        the focus's value. Returns (buckets emptied, cells still listed: the frontier a focused search leaves)."""
+        the focus's value. Returns (buckets emptied, cells still listed: the frontier a focused search leaves, cells
+        taken)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         mask = links.shape[1] - heads - 1  # the ring's buckets, a power of 2, less 1
-        for slot in range(mask + 1):
-            links[0, heads + slot] = _UNLISTED
+        clear(links, heads)
         listed, bucket, emptied = 0, 0, 0
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if not blocked(pen[0, i, j]):
@@ -1019,7 +1025,8 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 i, j = c // width, c % width
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
-    return SimpleNamespace(search=search, hand_over=hand_over, empty=empty, priority=priority, link=link)
+    return SimpleNamespace(search=search, hand_over=hand_over, empty=empty, priority=priority, link=link,
+                           clear=clear)
 
 
 def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
@@ -1106,7 +1113,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
     """The second half of a mend: ``lower_cut``, Dial's search from the seeds, with the search's rules
     (``searching``: :func:`_search_rules`' buckets and A*'s order with a focus)."""
-    empty, priority, link = searching.empty, searching.priority, searching.link
+    empty, priority, link, clear = searching.empty, searching.priority, searching.link, searching.clear
 
     @ti.func
     def lower_cut(values: ti.template(), pen: ti.template(), links: ti.template(), trail: ti.template(), seeds,
@@ -1119,8 +1126,7 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
         trail, cells taken)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         mask = links.shape[1] - heads - 1
-        for slot in range(mask + 1):
-            links[0, heads + slot] = _UNLISTED
+        clear(links, heads)
         bucket, listed, emptied, scan_at, taken = 0, 0, 0, 0, 0
         half = (mask + 1) // 2
         while (listed > 0 or seeds > 0) and taken <= budget and not (
@@ -1316,8 +1322,8 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
              trail: t.ints, cells: t.cells, cap: ti.f32, run: _vector(_MendRun), result: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
-        thread (``_search_rules``: ``raise_cut``, ``seed_cut``, ``lower_cut``; ``run``: a _MendRun), the tiles then
-        handed over to settling for round ``tick``; ``result``: a _MendResult."""
+        thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
+        _MendRun), the tiles then handed over to settling for round ``tick``; ``result``: a _MendResult."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             budget = run[_MEND.budget]
@@ -1495,7 +1501,8 @@ class _Kernels:
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
     ``keys``, ``queue``, ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells;
     ``out`` samples (steps, cells, 1 + nodes); ``run`` a launch's parameters (a named tuple: ``_StepRun``,
-    ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_PaintRun``) and ``result`` what it hands back."""
+    ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_MendRun``, ``_PaintRun``) and ``result`` what it hands
+    back."""
 
     def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool):
         init_taichi()
@@ -1904,7 +1911,7 @@ class _Layers(_LayerArrays):
     def _mend(self, focus: tuple[int, int] | None) -> int:
         """converge() after edits on a layer at its fixed point before them: the cells the edits cut off rise to
         the cap cell by cell, then Dial's search lowers them and whatever the edits opened from the seeds around
-        them (``_search_rules``: ``raise_cut``, ``seed_cut``, ``lower_cut``), so the work follows the cells that
+        them (``_raise_rules``, ``_lower_rules``), so the work follows the cells that
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
