@@ -27,7 +27,7 @@ from .grid import GridMap
 from .lookout import BoxLookout
 from .nodes import Vertices, place_nodes
 from .readings import NodeReadings
-from .stencil import RobotMoves, chain_costs
+from .stencil import RobotMoves, chain_moves
 
 
 
@@ -215,10 +215,12 @@ class Navigator:
         budget = cost_from_robot(self.backup, self._subgoal_at_robot()) * (1 + self.config.evidence_slack)
         max_steps = 4 * sum(self.grid.shape) if math.isinf(budget) else math.floor(budget) + 1
         chain = self._goal_chain(max_steps)
-        costs = None if chain is None else chain_costs(chain, self.engine.cost)
-        if costs is None or costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
+        if chain is None:
             return False
-        values = self.engine.sample(chain[:cells_near(chain_costs(chain), self.spacing) + 1])[:, 0].astype(np.float64)
+        lengths, costs = chain_moves(chain, self.engine.cost)
+        if costs.sum() > budget:  # the cost alone decides: no sample of the values (a kernel launch)
+            return False
+        values = self.engine.sample(chain[:cells_near(lengths, self.spacing) + 1])[:, 0].astype(np.float64)
         return goal_route_wins(costs, values, budget, settled_route, self.config.rise, self.config.settled_cells)
 
     def _subgoal_at_robot(self) -> float:
@@ -260,8 +262,9 @@ class Navigator:
     # -- reading the plan ----------------------------------------------------------------------------------------
     def node_edges(self) -> list[tuple[int, int]]:
         """The node pairs (a < b) connected in the node graph now (eq. 14), e.g. for a figure."""
-        graph = self.readings.graph(self.robot, self.goal) if self.config.accelerating else None
-        return [(a, b) for a, b, _ in graph.edges()] if graph else []
+        if not self.config.accelerating:
+            return []
+        return [(a, b) for a, b, _ in self.readings.graph(self.robot, self.goal).edges()]
 
     def current_path(self) -> list[Cell]:
         """The robot's current DP path: successors of the goal layer from R, up to the goal or 4 DmaxQ cells."""

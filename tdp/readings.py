@@ -10,7 +10,7 @@ from .blockage import BlockageMonitor
 from .checks import Cell
 from .engine import Engine
 from .nodes import NodeGraph, Vertices, pair_distances
-from .stencil import chain_costs
+from .stencil import chain_moves
 
 
 
@@ -91,9 +91,10 @@ class NodeReadings:
         a's cell, if they reach b in less than DmaxQ cells (b's vision); else inf - in the goal layer's units (cells;
         on a map with traversal costs, the moves' costs)."""
         chain = self.real_chain(self.vertices.cell(a, robot, goal), b, math.ceil(self.dmax_q) + 1, robot, goal)
-        if chain is None or chain_costs(chain).sum() >= self.dmax_q:
+        if chain is None:
             return math.inf
-        return float(chain_costs(chain, self.engine.cost).sum())
+        lengths, costs = chain_moves(chain, self.engine.cost)
+        return math.inf if lengths.sum() >= self.dmax_q else float(costs.sum())
 
     def _state(self, robot: tuple[int, int], goal: tuple[int, int]) -> tuple:
         """What the layers read at the graph's cells depend on: the iteration, R, G and the edits so far."""

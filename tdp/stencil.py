@@ -35,15 +35,15 @@ class Move(NamedTuple):
     crossed: tuple[tuple[int, int], ...]
 
 
-def chain_costs(chain, cost: np.ndarray | None = None) -> np.ndarray:
-    """The cost of each move of ``chain`` (cells, each one move from the last): its length L (cells), or on a map
-    with traversal costs ``cost`` (H, W) L x (cost[u] + cost[v]) / 2 - the units of the goal layer's values."""
+def chain_moves(chain, cost: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Each move of ``chain`` (cells, each one move from the last): its length L (cells) and its cost in the goal
+    layer's units - L itself, or on a map with traversal costs ``cost`` (H, W) L x (cost[u] + cost[v]) / 2."""
     cells = np.asarray(chain)
     lengths = np.hypot(*np.diff(cells, axis=0).T)
     if cost is None:
-        return lengths
+        return lengths, lengths
     at = cost[tuple(cells.T)].astype(np.float64)
-    return lengths * (at[:-1] + at[1:]) / 2
+    return lengths, lengths * (at[:-1] + at[1:]) / 2
 
 
 def _sign(x: int) -> int:

@@ -232,8 +232,11 @@ def test_the_navigators_goal_layer_plans_on_costs(planner):
 def test_a_chains_move_costs_are_lengths_on_a_binary_map_and_weighted_by_the_cells_costs_otherwise():
     chain = [(0, 0), (0, 1), (1, 2), (3, 3)]
     cost = np.array([[1.0, 3.0, 1.0, 1.0], [1.0, 1.0, 5.0, 1.0], [1.0] * 4, [1.0, 1.0, 1.0, 2.0]])
-    assert tdp.stencil.chain_costs(chain) == pytest.approx([1.0, np.sqrt(2), np.sqrt(5)])
-    assert tdp.stencil.chain_costs(chain, cost) == pytest.approx([2.0, 4 * np.sqrt(2), 3.5 * np.sqrt(5)])
+    lengths, costs = tdp.stencil.chain_moves(chain)
+    assert lengths == pytest.approx([1.0, np.sqrt(2), np.sqrt(5)]) and costs == pytest.approx(lengths)
+    lengths, costs = tdp.stencil.chain_moves(chain, cost)
+    assert lengths == pytest.approx([1.0, np.sqrt(2), np.sqrt(5)])
+    assert costs == pytest.approx([2.0, 4 * np.sqrt(2), 3.5 * np.sqrt(5)])
 
 
 def test_accelerating_nodes_detect_back_up_and_reach_on_a_costed_world_with_the_other_planners():
