@@ -51,19 +51,19 @@ class SimConfig:
         return RADIUS_M + self.margin_m
 
     def __post_init__(self):
-        for name in ("margin_m", "horizon_s", "goal_tolerance_m", "max_speed"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
-        if self.physics_hz < self.control_hz or self.physics_hz % self.control_hz:
-            raise ValueError("physics_hz must be a multiple of control_hz")
         inflation = (self.cost_scaling_factor, self.inflation_radius)
         if (inflation[0] is None) != (inflation[1] is None):
             raise ValueError("cost_scaling_factor and inflation_radius go together (nav2's inflation layer); got "
                              f"{inflation[0]!r} and {inflation[1]!r}")
-        for name, value in zip(("cost_scaling_factor", "inflation_radius"), inflation):
-            if value is not None and not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+        optional = ("cost_scaling_factor", "inflation_radius")
+        for name in ("margin_m", "horizon_s", "goal_tolerance_m", "max_speed") + optional:
+            value = getattr(self, name)
+            if value is None and name in optional:
+                continue
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+        if self.physics_hz < self.control_hz or self.physics_hz % self.control_hz:
+            raise ValueError("physics_hz must be a multiple of control_hz")
 
     def costs(self, occupied: np.ndarray, cell_m: float, world_cost: np.ndarray | None) -> np.ndarray | None:
         """The planner's traversal costs over ``occupied`` (the grown obstacles, cells of ``cell_m`` metres): the

@@ -124,7 +124,7 @@ class WorldFeed:
         self.occupied = np.array(occupied, bool)
         self.target = tuple(target)
         self.cost = None if cost is None else np.array(cost, np.float32)
-        self.planner_s = 0.0  # seconds the last update spent in the planner's update_map and set_goal
+        self.planner_s = 0.0  # seconds the last update spent in the planner's update_costs, update_map and set_goal
 
     def update(self, planner: Planner, occupied: np.ndarray, target: tuple[int, int],
                cost: np.ndarray | None = None) -> bool:
