@@ -16,6 +16,7 @@ boxes: ``SimConfig(cost_scaling_factor, inflation_radius)``).
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -116,19 +117,36 @@ def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats
     return float(np.median(ratios[1:])), float(np.median(times[1:])) * 1e3
 
 
+def inflated(grid: tdp.GridMap) -> tuple[tdp.GridMap, tdp.GridMap]:
+    """``grid`` inflated by ROBOT_RADIUS_M: binary, and with nav2's inflation cost (NAV2_INFLATION)."""
+    radius = ROBOT_RADIUS_M / grid.resolution
+    return grid.inflate(radius), grid.inflate(radius, **NAV2_INFLATION)
+
+
+def ros_worlds(quick: bool, max_side: float = math.inf):
+    """(name, binary, costed, away_m, free) for each ROS map (the first only, quick) of at most ``max_side`` cells
+    a side: :func:`inflated`'s two maps, the metres from each cell to the nearest obstacle of the map as loaded and
+    the cells of the binary map's largest free region."""
+    for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
+        grid = tdp.load_map(path)
+        if max(grid.shape) <= max_side:
+            binary, costed = inflated(grid)
+            away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
+            yield name, binary, costed, away_m, largest_free_region(binary.occupied)
+
+
+def mean_clearance_m(cells: list, away_m: np.ndarray) -> float:
+    """The mean of ``away_m`` over ``cells``."""
+    return float(np.mean([away_m[tuple(cell)] for cell in cells]))
+
+
 def clearance(quick: bool) -> list[dict]:
     """On the ROS maps inflated by ROBOT_RADIUS_M, the converged field's path between random pairs of the largest
     free region with nav2's inflation cost (``cost_scaling_factor`` 3 per metre, ``inflation_radius`` 1.05 m)
     against the binary map's: the mean clearance of its cells (metres to the nearest obstacle of the map as loaded)
     and its length, as ratios."""
     rows = []
-    for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
-        grid = tdp.load_map(path)
-        radius = ROBOT_RADIUS_M / grid.resolution
-        binary = grid.inflate(radius)
-        costed = grid.inflate(radius, **NAV2_INFLATION)
-        away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
-        free = largest_free_region(binary.occupied)
+    for name, binary, costed, away_m, free in ros_worlds(quick):
         rng = np.random.default_rng(1)
         for pair in range(2 if quick else PAIRS):
             start, goal = (tuple(int(v) for v in free[rng.integers(len(free))]) for _ in range(2))
@@ -138,7 +156,7 @@ def clearance(quick: bool) -> list[dict]:
                 field.converge()
                 routes.append(field.path(start))
             lengths = [sum(np.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(r, r[1:])) for r in routes]
-            clear = [float(np.mean([away_m[cell] for cell in r])) for r in routes]
+            clear = [mean_clearance_m(r, away_m) for r in routes]
             rows.append({"map": name, "pair": pair, "clearance_ratio": clear[1] / clear[0],
                          "length_ratio": lengths[1] / max(lengths[0], 1e-9), "start": start, "goal": goal})
     return rows
@@ -151,11 +169,8 @@ def paths_figure(rows: list[dict], path) -> None:
 
     name, map_path = ROS_MAPS[0]
     best = max((r for r in rows if r["map"] == name), key=lambda r: r["clearance_ratio"])
-    grid = tdp.load_map(map_path)
-    radius = ROBOT_RADIUS_M / grid.resolution
-    maps = {"path on the binary map": grid.inflate(radius),
-            "path with nav2's inflation cost": grid.inflate(radius, **NAV2_INFLATION)}
-    binary, costed = maps.values()
+    binary, costed = inflated(tdp.load_map(map_path))
+    maps = {"path on the binary map": binary, "path with nav2's inflation cost": costed}
     rows_free, cols_free = np.nonzero(~binary.occupied)
     top, bottom, left, right = rows_free.min() - 3, rows_free.max() + 4, cols_free.min() - 3, cols_free.max() + 4
     plt = pyplot()
@@ -174,10 +189,6 @@ def paths_figure(rows: list[dict], path) -> None:
     save_figure(fig, path)
 
 
-def _mean_clearance_m(cells: list, away_m: np.ndarray) -> float:
-    return float(np.mean([away_m[tuple(cell)] for cell in cells]))
-
-
 def grid_episodes(quick: bool) -> list[dict]:
     """Every planner (GRID_PLANNERS) driving through three shuttling boxes on the ROS maps inflated by the robot (of
     at most EPISODE_MAX_SIDE cells a side; D* Lite on those of DSTAR_MAX_SIDE), binary and with nav2's inflation cost
@@ -188,19 +199,13 @@ def grid_episodes(quick: bool) -> list[dict]:
     from tdp.simulate import run_planner, start_grid
 
     rows = []
-    for name, path in ROS_MAPS[:1] if quick else ROS_MAPS:
-        grid = tdp.load_map(path)
-        if max(grid.shape) > EPISODE_MAX_SIDE:
-            continue
-        radius = ROBOT_RADIUS_M / grid.resolution
-        maps = {"binary": grid.inflate(radius), "costed": grid.inflate(radius, **NAV2_INFLATION)}
-        away_m = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
-        free = largest_free_region(maps["binary"].occupied)
+    for name, binary, costed, away_m, free in ros_worlds(quick, EPISODE_MAX_SIDE):
+        maps = {"binary": binary, "costed": costed}
         rng = np.random.default_rng(2)
         for pair in range(1 if quick else EPISODE_PAIRS):
             start, goal = (tuple(int(v) for v in free[rng.integers(len(free))]) for _ in range(2))
             for planner in GRID_PLANNERS[:2] if quick else GRID_PLANNERS:
-                if planner == "dstar-lite" and max(grid.shape) > DSTAR_MAX_SIDE:
+                if planner == "dstar-lite" and max(binary.shape) > DSTAR_MAX_SIDE:
                     continue
                 row = {"map": name, "pair": pair, "planner": planner}
                 for kind, which in maps.items():
@@ -213,7 +218,7 @@ def grid_episodes(quick: bool) -> list[dict]:
                         driver.setup()
                     record = run_planner(world, driver, config, world.tick_limit)
                     row[kind] = {"reached": bool(record["reached"]), "collisions": record["collisions"],
-                                 "clearance_m": _mean_clearance_m(record["trajectory"], away_m),
+                                 "clearance_m": mean_clearance_m(record["trajectory"], away_m),
                                  "length": record["length"]}
                 rows.append(row)
             print(f"  {name} pair {pair}: episodes done", flush=True)
