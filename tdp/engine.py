@@ -43,7 +43,6 @@ os.environ.setdefault("ENABLE_TAICHI_HEADER_PRINT", "0")  # a library's stdout b
 import numpy as np  # noqa: E402
 import taichi as ti  # noqa: E402
 from taichi.lang import impl as _taichi_impl  # noqa: E402
-from taichi.lang.matrix import VectorType  # noqa: E402
 from taichi.types.ndarray_type import NdarrayType  # noqa: E402
 
 from . import stencil
@@ -130,12 +129,13 @@ _STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_raise_rules
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
-IDLE_ENTRIES = 8
+IDLE_ENTRIES = 16
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
 REBASE_AT = 1 << 29
 
-# Launch parameters and results of the kernels that take several: named tuples on the host, int32 vectors in Taichi
-# (a struct argument cost 5 µs more a launch, measured on the 2-core VM); kernels index them by the slots below.
+# Launch parameters and results of the kernels that take several: named tuples on the host, one int32 numpy array a
+# launch in Taichi (``_launch``: the parameters, then room for the results), which kernels index by the slots below.
+# An array argument costs about 9 µs a launch on the 2-core VM, an int32 vector 20 µs and a struct 25 µs.
 class _StepRun(NamedTuple):
     """``iterate``'s launch: the iteration's number and the sample row it writes."""
 
@@ -228,19 +228,28 @@ class _PaintRun(NamedTuple):
     listed: int
 
 
-def _vector(launch: type) -> VectorType:
-    """The kernel parameter type of a launch's named tuple: an int32 vector, an entry per field."""
-    return ti.types.vector(len(launch._fields), ti.i32)
+def _slots(launch: type, after: type | None = None):
+    """``launch`` with each field holding its index in a launch's array, for kernels to read ``run[_SETTLE.tick]``;
+    a result's fields come ``after`` the parameters of its launch."""
+    first = 0 if after is None else len(after._fields)
+    return launch(*range(first, first + len(launch._fields)))
 
 
-def _slots(launch: type):
-    """``launch`` with each field holding its index, for kernels to read ``run[_SETTLE.tick]``."""
-    return launch(*range(len(launch._fields)))
+def _launch(run: NamedTuple, result: type | None = None) -> np.ndarray:
+    """The int32 array a kernel's ``run`` parameter takes: the fields of ``run``, then a slot for each field of
+    ``result`` (if any), which the kernel fills (:func:`_outcome` reads them)."""
+    return np.array((*run, *[0] * (0 if result is None else len(result._fields))), np.int32)
 
 
-_STEP, _ITERATE, _SETTLE, _SETTLED_BY = _slots(_StepRun), _slots(_IterateRun), _slots(_SettleRun), _slots(_SettleResult)
-_SEARCH, _SEARCHED, _PAINT = _slots(_SearchRun), _slots(_SearchResult), _slots(_PaintRun)
-_MEND, _MENDED = _slots(_MendRun), _slots(_MendResult)
+def _outcome(result: type, launched: np.ndarray):
+    """The ``result`` (a named tuple type) a kernel wrote at the end of its launch array."""
+    return result(*(int(value) for value in launched[len(launched) - len(result._fields):]))
+
+
+_STEP, _ITERATE, _SETTLE, _SEARCH = _slots(_StepRun), _slots(_IterateRun), _slots(_SettleRun), _slots(_SearchRun)
+_MEND, _PAINT = _slots(_MendRun), _slots(_PaintRun)
+_SETTLED_BY, _SEARCHED = _slots(_SettleResult, _SettleRun), _slots(_SearchResult, _SearchRun)
+_MENDED = _slots(_MendResult, _MendRun)
 
 
 _initialised = False
@@ -1185,7 +1194,7 @@ def _iterate_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def iterate(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, header: t.ints, origins: t.cells,
-                cells: t.cells, out: t.samples, cap: ti.f32, run: _vector(_StepRun)):
+                cells: t.cells, out: t.samples, cap: ti.f32, run: t.ints):
         """One iteration src -> dst of the active tiles (``run``: a _StepRun), shared out among the threads; then
         the layers sampled at ``cells`` into out[step]."""
         relax_all(src, dst, pen, stamps, header, cap, run[_STEP.tick], False)
@@ -1194,7 +1203,7 @@ def _iterate_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     @kernel
     def iterate_serially(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, header: t.ints,
                          origins: t.cells, cells: t.cells, out: t.samples, cap: ti.f32,
-                         run: _vector(_IterateRun)) -> ti.i32:
+                         run: t.ints) -> ti.i32:
         """Up to ``steps`` iterations on the calling thread (``run``: an _IterateRun), each
         sampled into out[first + step], for as long as at most ``limit`` tiles are active. ``src`` and ``dst``
         swap roles at each iteration. Returns the iterations done.
@@ -1244,7 +1253,7 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def settle_serially(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
-                        queue: t.queue, cap: ti.f32, run: _vector(_SettleRun), result: t.ints):
+                        queue: t.queue, cap: ti.f32, run: t.ints):
         """converge()'s rounds on the calling thread (``run``: a _SettleRun): up to ``rounds`` rounds and ``sweeps``
         sweeps of tiles (0: any number; a round whose sweeps
         are spent stays open, and the next launch goes on with it; scans count against them: ``_spent``) until
@@ -1255,7 +1264,7 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         focus through either is at least its distance longer: ARCHITECTURE §6.1). Each round works through a
         list of its active tiles (``queue``, built as the round before stamps them, and kept between launches by
         ``paint``: ``listed`` 1; 0 lists the active tiles first), so a small repair on a large map does not pass
-        over every tile. ``result``: a _SettleResult."""
+        over every tile. Its results (a _SettleResult) go in ``run`` after the parameters."""
         tick, rounds, limit = run[_SETTLE.tick], run[_SETTLE.rounds], run[_SETTLE.limit]
         focus_row, focus_col = run[_SETTLE.focus_row], run[_SETTLE.focus_col]
         header[FOCUS_ROW], header[FOCUS_COL] = focus_row, focus_col
@@ -1290,11 +1299,11 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             done += 1
             if queue[(tick + done) % 2, queue.shape[1] - 1] == 0:  # no tile active for the next round
                 settled = 1
-        result[_SETTLED_BY.rounds], result[_SETTLED_BY.settled], result[_SETTLED_BY.focused] = done, settled, focused
-        result[_SETTLED_BY.swept], result[_SETTLED_BY.cut], result[_SETTLED_BY.move] = header[SWEPT], cut, -1
+        run[_SETTLED_BY.rounds], run[_SETTLED_BY.settled], run[_SETTLED_BY.focused] = done, settled, focused
+        run[_SETTLED_BY.swept], run[_SETTLED_BY.cut], run[_SETTLED_BY.move] = header[SWEPT], cut, -1
         inside = PAD <= focus_row < values.shape[1] - PAD and PAD <= focus_col < values.shape[2] - PAD
         if inside:  # the focus's successor move, read before the caller asks (a trace is a launch more)
-            result[_SETTLED_BY.move] = successor_move(values, pen, header, cap, 0, 0, focus_row, focus_col)
+            run[_SETTLED_BY.move] = successor_move(values, pen, header, cap, 0, 0, focus_row, focus_col)
 
 
 def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
@@ -1304,15 +1313,15 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def search(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-               cap: ti.f32, run: _vector(_SearchRun), result: t.ints):
+               cap: ti.f32, run: t.ints):
         """converge() from the initial state, on the calling thread (``_search_rules``; ``run``: a _SearchRun), the
-        tiles then handed over to settling for round ``tick``; ``result``: a _SearchResult."""
+        tiles then handed over to settling for round ``tick``; its results (a _SearchResult) go in ``run``."""
         ti.loop_config(serialize=True)
         for _ in range(run[_SEARCH.go]):
             found = bucket_search(values, pen, header, links, cap, run[_SEARCH.focus_row], run[_SEARCH.focus_col])
             hand_over(values, stamps, keys, links, run[_SEARCH.tick])
-            result[_SEARCHED.buckets], result[_SEARCHED.frontier] = found[0], found[1]
-            result[_SEARCHED.taken] = found[2]
+            run[_SEARCHED.buckets], run[_SEARCHED.frontier] = found[0], found[1]
+            run[_SEARCHED.taken] = found[2]
 
 
     raising = _raise_rules(cell)
@@ -1320,27 +1329,27 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.ints, cells: t.cells, cap: ti.f32, run: _vector(_MendRun), result: t.ints):
+             trail: t.ints, cells: t.cells, cap: ti.f32, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
-        _MendRun), the tiles then handed over to settling for round ``tick``; ``result``: a _MendResult."""
+        _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in ``run``."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             budget = run[_MEND.budget]
             raised = raise_cut(values, pen, header, links, trail, cells, cap, budget)
-            result[_MENDED.raised], result[_MENDED.spent] = raised, raised * RAISE_COST
+            run[_MENDED.raised], run[_MENDED.spent] = raised, raised * RAISE_COST
             if raised * RAISE_COST > budget:
                 continue
             seeds = seed_cut(values, pen, header, trail, cells, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col],
                               budget - raised * RAISE_COST)
-            result[_MENDED.spent] += found[3]
+            run[_MENDED.spent] += found[3]
             hand_over(values, stamps, keys, links, run[_MEND.tick])  # empties the buckets, given up or not
             width = values.shape[2]
             for k in range(found[2]):  # the seeds a focused mend left waiting join the frontier
                 i, j = trail[k] // width, trail[k] % width
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, run[_MEND.tick], 0, _LOWER, values[0, i, j])
-            result[_MENDED.buckets], result[_MENDED.frontier] = found[0], found[1]
+            run[_MENDED.buckets], run[_MENDED.frontier] = found[0], found[1]
 
 
 def _setup_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
@@ -1404,7 +1413,7 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     @kernel
     def paint(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
               queue: t.queue, origins: t.cells, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1),
-              cap: ti.f32, run: _vector(_PaintRun)):
+              cap: ti.f32, run: t.ints):
         """Write changed cells' ``penalties`` (inf occupied; free 0, or a weighted layer's cost) into every layer
         that contains them, and activate the tiles near them for the next iteration or round (``run``: a _PaintRun;
         ``_stamp_near``). A newly occupied cell takes its obstacle value, the cap, at once in both buffers, and
@@ -1466,12 +1475,11 @@ def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         sample_into(values, origins, cells, out, cap, 0)
 
     @kernel
-    def trace(values: t.values, pen: t.penalties, header: t.ints, cap: ti.f32, index: ti.i32,
-              start: ti.types.vector(2, ti.i32), out: t.cells):
-        """Follow the successors of layer ``index`` of this kind from ``start`` (padded layer coordinates) for at
-        most out.shape[0] - 1 steps, into out[1:]; out[0, 0] receives the number of steps."""
+    def trace(values: t.values, pen: t.penalties, header: t.ints, cap: ti.f32, index: ti.i32, out: t.cells):
+        """Follow the successors of layer ``index`` of this kind from the cell in out[0] (padded layer coordinates)
+        for at most out.shape[0] - 1 steps, into out[1:]; out[0, 0] receives the number of steps."""
         g, lane = index // width, index % width
-        i, j, steps = start[0], start[1], 0
+        i, j, steps = out[0, 0], out[0, 1], 0
         ti.loop_config(serialize=True)
         for _ in range(out.shape[0] - 1):
             move = -1
@@ -1501,8 +1509,8 @@ class _Kernels:
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
     ``keys``, ``queue``, ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells;
     ``out`` samples (steps, cells, 1 + nodes); ``run`` a launch's parameters (a named tuple: ``_StepRun``,
-    ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_MendRun``, ``_PaintRun``) and ``result`` what it hands
-    back."""
+    ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_MendRun``, ``_PaintRun``, as :func:`_launch` makes it),
+    followed by what it hands back (``_SettleResult``, ``_SearchResult``, ``_MendResult``)."""
 
     def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool):
         init_taichi()
@@ -1534,15 +1542,13 @@ def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool, weighted:
 def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
     """A value for a kernel parameter that makes a launch touch nothing that matters: the scratch layer's array or
     cap of that name, else zeros, or a small zero array of the annotated type (IDLE_ENTRIES along each axis: no
-    kernel indexes past them - ``settle_serially`` writes seven results; with two entries, as before, its result
+    kernel indexes past them - ``settle_serially``'s launch array holds 13 entries; with two, as once, its result
     writes ran past the array during every warm-up and corrupted the heap)."""
     if hasattr(scratch, parameter.name):
         return getattr(scratch, parameter.name)
     kind = parameter.annotation
     if isinstance(kind, NdarrayType):
         return np.zeros((IDLE_ENTRIES,) * kind.ndim, np.int32 if kind.dtype == ti.i32 else np.float32)
-    if isinstance(kind, VectorType):
-        return ti.Vector([0] * kind.n, dt=kind.dtype)
     if kind == ti.i32 or kind == ti.f32:
         return 0
     raise TypeError(f"warm_up cannot launch parameter {parameter.name!r} of type {kind!r}")
@@ -1666,7 +1672,8 @@ class _LayerArrays:
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap,
-                           run=_PaintRun(self.tick + int(self.round_open), int(self.listed)))  # an open round goes on
+                           run=_launch(_PaintRun(self.tick + int(self.round_open), int(self.listed))))  # an open
+        # round goes on
         self.woken = self.tick
         self._idle_sample = self.focus_move = None
         if self.edits is not None:
@@ -1697,9 +1704,9 @@ class _LayerArrays:
         """Cells (grid coordinates) visited following the successors of layer ``index`` of this kind from ``start``
         for at most ``max_steps`` moves, ``start`` left out."""
         origin = self.grid_origins[index] - PAD  # grid coordinates of padded layer cell (0, 0)
-        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the number of steps
-        self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index,
-                           start=(start[0] - origin[0], start[1] - origin[1]), out=out)
+        out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the start, then the number of steps
+        out[0] = start[0] - origin[0], start[1] - origin[1]
+        self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index, out=out)
         return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
 
     def warm_up(self) -> None:
@@ -1783,12 +1790,13 @@ class _Layers(_LayerArrays):
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
-                                                 run=_IterateRun(self.tick, first, steps, limit, self.woken))
+                                                 run=_launch(_IterateRun(self.tick, first, steps, limit, self.woken)))
             self._count_iterations(done)
             return done, False
 
         def in_parallel(first: int) -> bool:
-            self.kernels.iterate(**self._relaxing(), cells=cells, out=out, run=_StepRun(self.tick, first))
+            self.kernels.iterate(**self._relaxing(), cells=cells, out=out,
+                                 run=_launch(_StepRun(self.tick, first)))
             self._count_iterations(1)
             return False
 
@@ -1832,16 +1840,16 @@ class _Layers(_LayerArrays):
         self._idle_sample, self.fresh = None, False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
-        result = np.zeros(len(_SettleResult._fields), np.int32)
         self.swept = 0
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
-            run = _SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed))
-            self.kernels.settle_serially(**arrays, queue=self.queue, result=result, run=run)
-            outcome = _SettleResult(*(int(value) for value in result))
+            run = _launch(_SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed)),
+                          _SettleResult)
+            self.kernels.settle_serially(**arrays, queue=self.queue, run=run)
+            outcome = _outcome(_SettleResult, run)
             self.listed = True
             self.tick += outcome.rounds
             self.swept += outcome.swept
@@ -1879,15 +1887,15 @@ class _Layers(_LayerArrays):
         a tile again each time the front comes back to it (a maze's corridors). A focused search hands its frontier
         over to the settling rounds of later converges (:attr:`pending`). Returns the buckets emptied."""
         self._make_links()
-        result = np.zeros(len(_SearchResult._fields), np.int32)
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                      links=self.links, cap=self.cap, result=result)
+                      links=self.links, cap=self.cap)
         if self.restart_s is None:  # compiled (if not yet) by a launch that does nothing, so the time is the search's
-            self.kernels.search(**arrays, run=_SearchRun(*_NO_FOCUS, self.tick, go=0))
+            self.kernels.search(**arrays, run=_launch(_SearchRun(*_NO_FOCUS, self.tick, go=0), _SearchResult))
         began = time.perf_counter()
-        self.kernels.search(**arrays, run=_SearchRun(*(focus or _NO_FOCUS), self.tick, go=1))
+        run = _launch(_SearchRun(*(focus or _NO_FOCUS), self.tick, go=1), _SearchResult)
+        self.kernels.search(**arrays, run=run)
         self.restart_s = time.perf_counter() - began
-        outcome = _SearchResult(*(int(value) for value in result))
+        outcome = _outcome(_SearchResult, run)
         if not outcome.frontier:
             self.searched = outcome.taken
         self._searched(bool(outcome.frontier), "search")
@@ -1919,14 +1927,13 @@ class _Layers(_LayerArrays):
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
-        result = np.zeros(len(_MendResult._fields), np.int32)
         cells_in_layer = self.values.shape[1] * self.values.shape[2]
         restart = cells_in_layer if self.searched is None else self.searched + cells_in_layer // FILLS_PER_CELL
         budget = int(MEND_SHARE * restart)
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                          links=self.links, trail=self.trail, cells=cells, cap=self.cap,
-                          run=_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), result=result)
-        outcome = _MendResult(*(int(value) for value in result))
+                          links=self.links, trail=self.trail, cells=cells, cap=self.cap, run=run)
+        outcome = _outcome(_MendResult, run)
         if outcome.spent > budget:  # most of the layer cut off or changed: a search from the source costs less
             self.reset()
             return self._search(focus)
