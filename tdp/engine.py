@@ -110,12 +110,19 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 RESTART_SHARE = 0.5
 #: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of a restart's price, the
 #: cells the last search took and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a
-#: restart, whatever the cut); raising a cell costs about RAISE_COST cells a search takes (its relaxation, then the
-#: look at the cells that came through it: 40-50 ns against 19 ns measured on the 2-core VM), lowering one a cell.
+#: restart, whatever the cut), or of the cells the source still reaches and the fills once its probe has counted
+#: them. Raising a cell is priced at RAISE_COST cells a search takes, lowering one at a cell: measured on the 2-core
+#: VM a raise with its seed's relaxation costs 50-75 ns (mazes the cheapest), a cell a search takes 50-65 ns - the
+#: dearer price gives way sooner where a raise runs away (a box sealing off half a maze).
 MEND_SHARE = 0.4
 RAISE_COST = 2
-#: A restart's price beyond its search: the reset fills the layer's arrays, about a search's cell per this many cells
-#: (a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole map).
+#: The probe (``_flood_rules``) counts up to this many cells per cell raised (a counted cell costs about a quarter
+#: of a raised one): enough to count a pocket the goal is sealed in before the raise has spent much more than the
+#: restart costs, a twentieth of a large mend's time where it counts in vain.
+PROBE_SHARE = 0.5
+#: A reset's price in cells a search takes, at most: a search's cell per this many cells of the layer (it fills the
+#: layer's arrays; a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole
+#: map). The last reset's measured time gives it, where less (a large map's fills run at memory speed).
 FILLS_PER_CELL = 16
 SLOWEST_SWEEP_S = 2.5e-6
 _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
@@ -128,6 +135,8 @@ _STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_raise_rules
 #: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
+#: Padded cells a layer may have a side: a mend's probe packs a cell's row and column in one int32 (``_flood_rules``).
+MAX_SIDE = 1 << 15
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 16
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -201,24 +210,28 @@ class _SearchResult(NamedTuple):
 
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
-    stamped for, its budget (cells a search takes: past it, the mend gives way to a restart) and whether to mend
-    (0: a launch that only compiles)."""
+    stamped for, its budget (cells a search takes: past it, the mend gives way to a restart), a reset's fills in
+    those units and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
     tick: int
     budget: int
+    fills: int
     go: int
 
 
 class _MendResult(NamedTuple):
     """What ``mend`` hands back: the buckets emptied, the cells left to lower (a focused mend's frontier), the cells
-    raised to the cap, and its work in cells a search takes (over the budget: it gave up)."""
+    raised to the cap, the cells the source reaches (-1: not counted), its work in cells a search takes, and
+    whether it gave up for a restart (its work passed the budget, or the budget fell below it)."""
 
     buckets: int
     frontier: int
     raised: int
+    reached: int
     spent: int
+    gave_up: int
 
 
 class _PaintRun(NamedTuple):
@@ -1038,11 +1051,49 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                            clear=clear)
 
 
+def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, breadth first, in bursts.
+    It steps by the moves that cross no cell: every other move's crossed cells must be free and make a way of those
+    moves from one end to the other (ARCHITECTURE §4), so they reach the same cells - four loads a cell where the
+    whole stencil takes forty. Its queue and marks are rows 1 and 2 of a mend's ``trail``."""
+    blocked = cell.blocked
+    steps = tuple(m for m in cell.moves if not m.crossed)
+
+    @ti.func
+    def flood(pen: ti.template(), header: ti.template(), trail: ti.template(), head, tail, until):
+        """Go on with the flood (its queue ``trail[1, head:tail]``; nothing queued yet: start at the source, if
+        free) until ``until`` cells are queued or none is left to take; returns (head, tail): head == tail once
+        every cell the source reaches is counted."""
+        width = pen.shape[2]
+        i, j = header[SOURCE_ROW], header[SOURCE_COL]
+        if tail == 0 and not blocked(pen[0, i, j]):
+            trail[1, 0], trail[2, i * width + j], tail = (i << 16) | j, 1, 1
+        while head < tail and tail < until:
+            i, j = trail[1, head] >> 16, trail[1, head] & 0xFFFF  # a queued cell: (row << 16) | column
+            head += 1
+            for m in ti.static(steps):
+                u, v = i + m.dr, j + m.dc
+                if trail[2, u * width + v] == 0 and not blocked(pen[0, u, v]):
+                    trail[1, tail], trail[2, u * width + v] = (u << 16) | v, 1
+                    tail += 1
+        return ti.Vector([head, tail])
+
+    @ti.func
+    def unmark(trail: ti.template(), width, tail):
+        """Clear the marks of the ``tail`` cells a flood queued (``width``: the padded layer's)."""
+        for k in range(tail):
+            trail[2, (trail[1, k] >> 16) * width + (trail[1, k] & 0xFFFF)] = 0
+
+    return SimpleNamespace(flood=flood, unmark=unmark)
+
+
 def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
     them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
     the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
     moves, move_cost, blocked, updated = cell.moves, cell.move_cost, cell.blocked, cell.updated
+    probing = _flood_rules(cell)
+    flood, unmark = probing.flood, probing.unmark
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, top, i, j):
@@ -1057,16 +1108,24 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget):
+                  trail: ti.template(), cells: ti.template(), cap, budget, fills):
         """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
         checked first and a raised cell's neighbours after it. Cell by cell on a stack: a sealed pocket rises at
         memory speed, with no wave to wait for. Every cell left below the cap then has a real route (a neighbour at
         least a move lower, down to the source). Only a raised cell's dependants - neighbours whose value is its
-        old one plus their move to it - are looked at again. The raised cells go in ``trail``; returns how many,
-        and it stops once they cost more than ``budget`` (cells a search takes; a raise costs RAISE_COST each)."""
-        top, raised = 0, 0
+        old one plus their move to it - are looked at again. The raised cells go in row 0 of ``trail``.
+
+        It stops once its work passes ``budget`` (cells a search takes: a raise costs RAISE_COST each). Once the raise
+        has cost MEND_SHARE of the reset's ``fills`` - the least budget a restart's price allows - the probe
+        (``flood``) counts the cells the source reaches, in bursts each time that cost doubles, PROBE_SHARE of the
+        cells raised in all: once it has them all, a restart's price is known - those cells and the fills - and the
+        budget falls to MEND_SHARE of it where that is less (a goal sealed in a pocket: every other cell would rise,
+        where a restart searches the pocket). Returns (cells raised, the budget, the cells the source reaches (-1:
+        not counted))."""
+        top, raised, head, tail, reached = 0, 0, 0, 0, -1
+        probe_at = ti.max(ti.i32(MEND_SHARE * fills), 1)
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 top = push(values, links, cap, top, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
@@ -1078,16 +1137,24 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
             value = values[0, i, j]
             if value < cap and updated(values, pen, header, cap, 0, i, j) > value:
                 values[0, i, j] = cap
-                trail[raised] = c
+                trail[0, raised] = c
                 raised += 1
                 for m in ti.static(moves):  # the neighbours whose value came through this cell's (their route;
                     u, v = i - m.dr, j - m.dc  # a move whose crossing is now blocked starts within reach of an edit)
                     if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
                         top = push(values, links, cap, top, u, v)
+                if reached < 0 and raised * RAISE_COST > probe_at:
+                    queue = flood(pen, header, trail, head, tail, ti.max(tail + 1, ti.i32(PROBE_SHARE * raised)))
+                    head, tail = queue[0], queue[1]
+                    if head == tail:
+                        reached = tail
+                        budget = ti.min(budget, ti.i32(MEND_SHARE * (reached + fills)))
+                    probe_at *= 2
         while top > 0:  # over budget: the stack emptied, for the restart
             top -= 1
             links[1, links[0, top]] = _UNLISTED
-        return raised
+        unmark(trail, values.shape[2], tail)
+        return ti.Vector([raised, budget, reached])
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -1097,12 +1164,12 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         of them than cells looked at). Returns how many."""
         seeds = 0
         for k in range(raised):
-            c = trail[k]
+            c = trail[0, k]
             i, j = c // values.shape[2], c % values.shape[2]
             value = updated(values, pen, header, cap, 0, i, j)
             if value < values[0, i, j]:
                 values[0, i, j] = value
-                trail[seeds] = c
+                trail[0, seeds] = c
                 seeds += 1
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
@@ -1112,7 +1179,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     value = updated(values, pen, header, cap, 0, i, j)
                 if value < values[0, i, j]:
                     values[0, i, j] = value
-                    trail[seeds] = i * values.shape[2] + j
+                    trail[0, seeds] = i * values.shape[2] + j
                     seeds += 1
         return seeds
 
@@ -1143,21 +1210,21 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
             if listed == 0:  # the ring ran dry: on to the nearest seed waiting
                 bucket = _NEVER
                 for k in range(seeds):
-                    c = trail[k]
+                    c = trail[0, k]
                     bucket = ti.min(bucket, ti.i32(priority(values[0, c // width, c % width], c // width,
                                                             c % width, focus_row, focus_col)))
                 scan_at = bucket
             if bucket >= scan_at:
                 waiting = 0
                 for k in range(seeds):
-                    c = trail[k]
+                    c = trail[0, k]
                     i, j = c // width, c % width
                     due = ti.i32(priority(values[0, i, j], i, j, focus_row, focus_col))
                     if links[1, c] == _UNLISTED and due <= bucket + half:
                         link(links, heads, c, ti.max(bucket, due) & mask)
                         listed += 1
                     elif links[1, c] == _UNLISTED:
-                        trail[waiting] = c
+                        trail[0, waiting] = c
                         waiting += 1
                 seeds, scan_at = waiting, bucket + half  # a seed lowered and listed since waits no more
             change = empty(values, pen, links, bucket, focus_row, focus_col)
@@ -1329,25 +1396,28 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.ints, cells: t.cells, cap: ti.f32, run: t.ints):
+             trail: t.queue, cells: t.cells, cap: ti.f32, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
-        _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in ``run``."""
+        _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in
+        ``run``. ``trail``: (3, padded cells), its rows ``raise_cut``'s and ``flood``'s, all 0 in row 2."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
-            budget = run[_MEND.budget]
-            raised = raise_cut(values, pen, header, links, trail, cells, cap, budget)
-            run[_MENDED.raised], run[_MENDED.spent] = raised, raised * RAISE_COST
-            if raised * RAISE_COST > budget:
+            cut = raise_cut(values, pen, header, links, trail, cells, cap, run[_MEND.budget], run[_MEND.fills])
+            raised, budget, spent = cut[0], cut[1], cut[0] * RAISE_COST
+            run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, cut[2], spent
+            run[_MENDED.gave_up] = ti.select(spent > budget, 1, 0)
+            if spent > budget:
                 continue
             seeds = seed_cut(values, pen, header, trail, cells, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col],
-                              budget - raised * RAISE_COST)
+                              budget - spent)
             run[_MENDED.spent] += found[3]
+            run[_MENDED.gave_up] = ti.select(spent + found[3] > budget, 1, 0)
             hand_over(values, stamps, keys, links, run[_MEND.tick])  # empties the buckets, given up or not
             width = values.shape[2]
             for k in range(found[2]):  # the seeds a focused mend left waiting join the frontier
-                i, j = trail[k] // width, trail[k] % width
+                i, j = trail[0, k] // width, trail[0, k] % width
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, run[_MEND.tick], 0, _LOWER, values[0, i, j])
             run[_MENDED.buckets], run[_MENDED.frontier] = found[0], found[1]
 
@@ -1603,6 +1673,8 @@ class _LayerArrays:
         self.edits: list[np.ndarray] | None = None
         self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
         self.searched: int | None = None  # cells the last search to the end took (``_mend``'s price of a restart)
+        self.cell_s: float | None = None  # ... and the seconds it took per cell
+        self.reset_s: float | None = None  # seconds the last reset took
         self.converged_by = ""  # how the last converge ended: "search", "mend" or "rounds"
         self.activate_all()
 
@@ -1683,6 +1755,7 @@ class _LayerArrays:
         """The values back to the initial state of eqs. 5 and 10 (the other buffer follows lazily, :meth:`iterate`);
         only the tiles within the stencil's reach of the source are active (every other cell and its inputs hold the
         cap: it cannot change before a change reaches it)."""
+        began = time.perf_counter()
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
         self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
@@ -1695,6 +1768,7 @@ class _LayerArrays:
         self.pending = False
         self.fresh = True
         self._idle_sample = self.focus_move = self.edits = None
+        self.reset_s = time.perf_counter() - began
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
@@ -1717,7 +1791,7 @@ class _LayerArrays:
         scratch = _LayerArrays(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
         # the search's and the mend's arrays as Taichi ndarrays, as every later launch passes them (a numpy array
         # compiles another kernel: the first mend compiled for 1.6 s inside a planner's tick)
-        scratch.links, scratch.trail = ti.ndarray(ti.i32, (2, IDLE_ENTRIES)), ti.ndarray(ti.i32, (IDLE_ENTRIES,))
+        scratch.links, scratch.trail = ti.ndarray(ti.i32, (2, IDLE_ENTRIES)), ti.ndarray(ti.i32, (3, IDLE_ENTRIES))
         for kernel in self.kernels.all:
             kernel(**{parameter.name: _idle_argument(parameter, scratch)
                       for parameter in inspect.signature(kernel).parameters.values()})
@@ -1897,7 +1971,7 @@ class _Layers(_LayerArrays):
         self.restart_s = time.perf_counter() - began
         outcome = _outcome(_SearchResult, run)
         if not outcome.frontier:
-            self.searched = outcome.taken
+            self.searched, self.cell_s = outcome.taken, self.restart_s / max(outcome.taken, 1)
         self._searched(bool(outcome.frontier), "search")
         return outcome.buckets
 
@@ -1926,19 +2000,28 @@ class _Layers(_LayerArrays):
         cells = _cells_array(np.concatenate(self.edits))
         self._make_links()
         if self.trail is None:
-            self.trail = ti.ndarray(ti.i32, (self.values.shape[1] * self.values.shape[2],))
+            self.trail = ti.ndarray(ti.i32, (3, self.values.shape[1] * self.values.shape[2]))
+            self.trail.fill(0)
         cells_in_layer = self.values.shape[1] * self.values.shape[2]
-        restart = cells_in_layer if self.searched is None else self.searched + cells_in_layer // FILLS_PER_CELL
-        budget = int(MEND_SHARE * restart)
-        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, go=1), _MendResult)
+        fills = self._fills()
+        restart = cells_in_layer if self.searched is None else self.searched + fills
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), fills, go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, cap=self.cap, run=run)
         outcome = _outcome(_MendResult, run)
-        if outcome.spent > budget:  # most of the layer cut off or changed: a search from the source costs less
+        if outcome.gave_up:  # most of the layer cut off or changed: a search from the source costs less
             self.reset()
             return self._search(focus)
         self._searched(bool(outcome.frontier), "mend")
         return outcome.buckets
+
+    def _fills(self) -> int:
+        """A reset's price in cells a search takes: the last reset's time over the last search's per cell, at most
+        one per FILLS_PER_CELL cells of the layer (a first reset's time may hold compiling)."""
+        most = self.values.shape[1] * self.values.shape[2] // FILLS_PER_CELL
+        if self.reset_s is None or self.cell_s is None:
+            return most
+        return min(most, int(self.reset_s / self.cell_s))
 
     def _repair(self, focus: tuple[int, int] | None) -> int:
         """converge() after edits: cell by cell (:meth:`_mend`) when the layer was at its fixed point before them,
@@ -2039,6 +2122,8 @@ class Engine:
         self.occupied = np.array(occupied, dtype=bool)
         self.cost = None if cost is None else np.array(cost, np.float32)  # a copy: set_costs changes it
         self.rows, self.cols = self.occupied.shape
+        if max(self.rows, self.cols) + 2 * PAD > MAX_SIDE:
+            raise ValueError(f"a map may have at most {MAX_SIDE - 2 * PAD} cells a side, got {self.rows} x {self.cols}")
         self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
         self.corner_cutting = bool(corner_cutting)
         self.goal = (int(goal[0]), int(goal[1]))

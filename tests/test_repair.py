@@ -279,3 +279,40 @@ def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
         engine.converge()
         assert engine.converged_by() == "mend" and np.isinf(engine.goal_distances()[far]) == sealed
         assert_equal_to_a_fresh_converge(engine, {})
+
+
+def ring_round(occupied: np.ndarray, centre, half: int) -> np.ndarray:
+    """The free cells of a square ring two cells thick, outer half-side ``half``, round ``centre`` (clipped to the
+    map): no move of the stencil jumps it, corners cut or not."""
+    ring = np.zeros(occupied.shape, bool)
+    ring[max(centre[0] - half, 0):centre[0] + half + 1, max(centre[1] - half, 0):centre[1] + half + 1] = True
+    ring[max(centre[0] - half + 2, 0):centre[0] + half - 1, max(centre[1] - half + 2, 0):centre[1] + half - 1] = False
+    return np.argwhere(ring & ~occupied)
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True])
+def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_pocket(monkeypatch, corner_cutting):
+    """Sealing the goal in cuts every other cell off: a mend would raise them all, where a restart searches the
+    pocket. The mend's probe counts the cells the source still reaches, and their price (with the reset's) caps its
+    budget: with MEND_SHARE so large that raising the whole map fits the budget a whole search prices, a goal sealed
+    in a pocket - or under a box - still goes to a restart, while the same ring round a far cell (the source
+    reaches most of the map) is mended. Every repair equals a fresh converge."""
+    monkeypatch.setattr(engine_module, "MEND_SHARE", 3.0)
+    occupied = np.random.default_rng(5).random((90, 90)) < 0.2
+    goal = (45, 45)
+    occupied[goal] = False
+    options = dict(corner_cutting=corner_cutting)
+    engine = Engine(occupied, goal, **options)
+    engine.converge()
+    distances = engine.goal_distances()
+    far = np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), occupied.shape)
+    box = np.array([(goal[0] + i, goal[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    for cells, by in ((ring_round(occupied, goal, 4), "search"), (box, "search"), (ring_round(occupied, far, 7), "mend")):
+        cells = cells[~occupied[cells[:, 0], cells[:, 1]]]
+        engine.set_cells(cells, np.ones(len(cells), bool))
+        engine.converge()
+        assert engine.converged_by() == by
+        assert_equal_to_a_fresh_converge(engine, options)
+        engine.set_cells(cells, np.zeros(len(cells), bool))
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, options)
