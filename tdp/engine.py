@@ -2059,6 +2059,14 @@ class _Layers(_LayerArrays):
         return SERIAL_TILES if self.lanes else SERIAL_SETTLE_TILES
 
 
+def _fitting(shape: tuple[int, int]) -> tuple[int, int]:
+    """A map's (rows, cols) if its layers fit the engine (``MAX_SIDE``), else a ValueError naming the shape."""
+    rows, cols = shape
+    if max(rows, cols) + 2 * PAD > MAX_SIDE:
+        raise ValueError(f"a map may have at most {MAX_SIDE - 2 * PAD} cells a side, got {rows} x {cols}")
+    return rows, cols
+
+
 def _cells_array(cells) -> np.ndarray:
     """(n, 2) int32, contiguous: how kernels take cells."""
     return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
@@ -2121,9 +2129,7 @@ class Engine:
                  corner_cutting: bool = False, cost: np.ndarray | None = None):
         self.occupied = np.array(occupied, dtype=bool)
         self.cost = None if cost is None else np.array(cost, np.float32)  # a copy: set_costs changes it
-        self.rows, self.cols = self.occupied.shape
-        if max(self.rows, self.cols) + 2 * PAD > MAX_SIDE:
-            raise ValueError(f"a map may have at most {MAX_SIDE - 2 * PAD} cells a side, got {self.rows} x {self.cols}")
+        self.rows, self.cols = _fitting(self.occupied.shape)
         self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
         self.corner_cutting = bool(corner_cutting)
         self.goal = (int(goal[0]), int(goal[1]))
