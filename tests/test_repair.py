@@ -307,7 +307,8 @@ def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_p
     distances = engine.goal_distances()
     far = np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), occupied.shape)
     box = np.array([(goal[0] + i, goal[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
-    for cells, by in ((ring_round(occupied, goal, 4), "search"), (box, "search"), (ring_round(occupied, far, 7), "mend")):
+    edits = [(ring_round(occupied, goal, 4), "search"), (box, "search"), (ring_round(occupied, far, 7), "mend")]
+    for cells, by in edits:
         cells = cells[~occupied[cells[:, 0], cells[:, 1]]]
         engine.set_cells(cells, np.ones(len(cells), bool))
         engine.converge()
