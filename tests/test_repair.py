@@ -290,18 +290,21 @@ def ring_round(occupied: np.ndarray, centre, half: int) -> np.ndarray:
     return np.argwhere(ring & ~occupied)
 
 
-@pytest.mark.parametrize("corner_cutting", [False, True])
-def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_pocket(monkeypatch, corner_cutting):
+@pytest.mark.parametrize("corner_cutting, weighted", [(False, False), (True, False), (False, True)])
+def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_pocket(monkeypatch, corner_cutting,
+                                                                                       weighted):
     """Sealing the goal in cuts every other cell off: a mend would raise them all, where a restart searches the
     pocket. The mend's probe counts the cells the source still reaches, and their price (with the reset's) caps its
     budget: with MEND_SHARE so large that raising the whole map fits the budget a whole search prices, a goal sealed
     in a pocket - or under a box - still goes to a restart, while the same ring round a far cell (the source
-    reaches most of the map) is mended. Every repair equals a fresh converge."""
+    reaches most of the map) is mended, on a binary map and on one with costs. Every repair equals a fresh
+    converge."""
     monkeypatch.setattr(engine_module, "MEND_SHARE", 3.0)
-    occupied = np.random.default_rng(5).random((90, 90)) < 0.2
+    rng = np.random.default_rng(5)
+    occupied = rng.random((90, 90)) < 0.2
     goal = (45, 45)
     occupied[goal] = False
-    options = dict(corner_cutting=corner_cutting)
+    options = dict(corner_cutting=corner_cutting, cost=1 + 4 * rng.random(occupied.shape) if weighted else None)
     engine = Engine(occupied, goal, **options)
     engine.converge()
     distances = engine.goal_distances()
