@@ -116,10 +116,10 @@ RESTART_SHARE = 0.5
 #: dearer price gives way sooner where a raise runs away (a box sealing off half a maze).
 MEND_SHARE = 0.4
 RAISE_COST = 2
-#: The probe (``_flood_rules``) counts up to this many cells per cell raised (a counted cell costs about a quarter
-#: of a raised one): enough to count a pocket the goal is sealed in before the raise has spent much more than the
-#: restart costs, a twentieth of a large mend's time where it counts in vain.
-PROBE_SHARE = 0.5
+#: The probe (``_flood_rules``) counts up to this many cells per cell raised: enough to count a pocket the goal is
+#: sealed in before the raise has spent much more than a restart costs, 3-5 % of a large mend's time where it counts
+#: in vain (measured on the 2-core VM; two a cell raised: 10-15 %).
+PROBE_SHARE = 1
 #: A reset's price in cells a search takes, at most: a search's cell per this many cells of the layer (it fills the
 #: layer's arrays; a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole
 #: map). The last reset's measured time gives it, where less (a large map's fills run at memory speed).
@@ -210,14 +210,17 @@ class _SearchResult(NamedTuple):
 
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
-    stamped for, its budget (cells a search takes: past it, the mend gives way to a restart), a reset's fills in
-    those units and whether to mend (0: a launch that only compiles)."""
+    stamped for, its budget (cells a search takes: past it, the mend gives way to a restart), a restart's price and
+    a reset's fills in those units, the cells its probe may count per cell raised, and whether to mend (0: a launch
+    that only compiles)."""
 
     focus_row: int
     focus_col: int
     tick: int
     budget: int
+    restart: int
     fills: int
+    probe_share: int
     go: int
 
 
@@ -1058,31 +1061,71 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
     whole stencil takes forty. Its queue and marks are rows 1 and 2 of a mend's ``trail``."""
     blocked = cell.blocked
     steps = tuple(m for m in cell.moves if not m.crossed)
+    spans = all(abs(m.dr) + abs(m.dc) == 1 for m in steps)  # the four straight steps: fill by rows
 
     @ti.func
-    def flood(pen: ti.template(), header: ti.template(), trail: ti.template(), head, tail, until):
-        """Go on with the flood (its queue ``trail[1, head:tail]``; nothing queued yet: start at the source, if
-        free) until ``until`` cells are queued or none is left to take; returns (head, tail): head == tail once
-        every cell the source reaches is counted."""
+    def open_cell(pen: ti.template(), trail: ti.template(), width, i, j):
+        """Whether padded cell (i, j) is free and not yet marked."""
+        return trail[2, i * width + j] == 0 and not blocked(pen[0, i, j])
+
+    @ti.func
+    def flood(pen: ti.template(), header: ti.template(), trail: ti.template(), state, until):
+        """Go on with the flood (``state``: (head, tail, cells marked) - its queue of seeds ``trail[1, head:tail]``,
+        each a cell marked; nothing queued yet: start at the source, if free) until ``until`` cells are marked or no
+        seed is left; returns the new state: head == tail once every cell the source reaches is counted. With the
+        straight steps (``spans``) a seed's row is filled left and right at once, and a seed is queued for each run
+        of open cells beside the filled span in the rows above and below (a scanline fill: a few loads a cell);
+        else each seed queues its open neighbours."""
         width = pen.shape[2]
+        head, tail, marked = state[0], state[1], state[2]
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if tail == 0 and not blocked(pen[0, i, j]):
-            trail[1, 0], trail[2, i * width + j], tail = (i << 16) | j, 1, 1
-        while head < tail and tail < until:
+            trail[1, 0], trail[2, i * width + j], tail, marked = (i << 16) | j, 1, 1, 1
+        while head < tail and marked < until:
             i, j = trail[1, head] >> 16, trail[1, head] & 0xFFFF  # a queued cell: (row << 16) | column
             head += 1
-            for m in ti.static(steps):
-                u, v = i + m.dr, j + m.dc
-                if trail[2, u * width + v] == 0 and not blocked(pen[0, u, v]):
-                    trail[1, tail], trail[2, u * width + v] = (u << 16) | v, 1
-                    tail += 1
-        return ti.Vector([head, tail])
+            if ti.static(spans):
+                left, right = j, j
+                while open_cell(pen, trail, width, i, left - 1):
+                    left -= 1
+                    trail[2, i * width + left] = 1
+                while open_cell(pen, trail, width, i, right + 1):
+                    right += 1
+                    trail[2, i * width + right] = 1
+                marked += right - left
+                for row in ti.static((-1, 1)):
+                    run = False
+                    for v in range(left, right + 1):
+                        free = open_cell(pen, trail, width, i + row, v)
+                        if free and not run:
+                            trail[1, tail], trail[2, (i + row) * width + v] = ((i + row) << 16) | v, 1
+                            tail += 1
+                            marked += 1
+                        run = free
+            else:
+                for m in ti.static(steps):
+                    u, v = i + m.dr, j + m.dc
+                    if open_cell(pen, trail, width, u, v):
+                        trail[1, tail], trail[2, u * width + v] = (u << 16) | v, 1
+                        tail += 1
+                        marked += 1
+        return ti.Vector([head, tail, marked])
 
     @ti.func
     def unmark(trail: ti.template(), width, tail):
-        """Clear the marks of the ``tail`` cells a flood queued (``width``: the padded layer's)."""
+        """Clear the marks of a flood that queued ``tail`` seeds (``width``: the padded layer's): each seed's and,
+        filling by spans, the marked run of its row round it."""
         for k in range(tail):
-            trail[2, (trail[1, k] >> 16) * width + (trail[1, k] & 0xFFFF)] = 0
+            i, j = trail[1, k] >> 16, trail[1, k] & 0xFFFF
+            trail[2, i * width + j] = 0
+            if ti.static(spans):
+                left, right = j - 1, j + 1
+                while trail[2, i * width + left] == 1:
+                    trail[2, i * width + left] = 0
+                    left -= 1
+                while trail[2, i * width + right] == 1:
+                    trail[2, i * width + right] = 0
+                    right += 1
 
     return SimpleNamespace(flood=flood, unmark=unmark)
 
@@ -1108,7 +1151,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget, fills):
+                  trail: ti.template(), cells: ti.template(), cap, budget, restart, fills, probe_share):
         """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
@@ -1117,15 +1160,17 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         least a move lower, down to the source). Only a raised cell's dependants - neighbours whose value is its
         old one plus their move to it - are looked at again. The raised cells go in row 0 of ``trail``.
 
-        It stops once its work passes ``budget`` (cells a search takes: a raise costs RAISE_COST each). Once the raise
-        has cost MEND_SHARE of the reset's ``fills`` - the least budget a restart's price allows - the probe
-        (``flood``) counts the cells the source reaches, in bursts each time that cost doubles, PROBE_SHARE of the
-        cells raised in all: once it has them all, a restart's price is known - those cells and the fills - and the
-        budget falls to MEND_SHARE of it where that is less (a goal sealed in a pocket: every other cell would rise,
+        It stops once its work passes ``budget`` (cells a search takes: a raise costs RAISE_COST each), the share
+        of ``restart`` (a restart's price in those units, the reset's ``fills`` in it) it may spend. Once the raise
+        has cost that share of the fills - the least budget any restart's price allows - the probe (``flood``)
+        counts the cells the source reaches, in bursts each time that cost doubles, ``probe_share`` of the cells
+        raised in all: once it has them all, a restart's price is known - those cells and the fills - and the
+        budget falls to the share of it where that is less (a goal sealed in a pocket: every other cell would rise,
         where a restart searches the pocket). Returns (cells raised, the budget, the cells the source reaches (-1:
         not counted))."""
-        top, raised, head, tail, reached = 0, 0, 0, 0, -1
-        probe_at = ti.max(ti.i32(MEND_SHARE * fills), 1)
+        top, raised, probe, reached = 0, 0, ti.Vector([0, 0, 0]), -1
+        share = ti.f64(budget) / restart
+        probe_at = ti.max(ti.i32(share * fills), 1)
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 top = push(values, links, cap, top, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
@@ -1144,16 +1189,15 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
                         top = push(values, links, cap, top, u, v)
                 if reached < 0 and raised * RAISE_COST > probe_at:
-                    queue = flood(pen, header, trail, head, tail, ti.max(tail + 1, ti.i32(PROBE_SHARE * raised)))
-                    head, tail = queue[0], queue[1]
-                    if head == tail:
-                        reached = tail
-                        budget = ti.min(budget, ti.i32(MEND_SHARE * (reached + fills)))
+                    probe = flood(pen, header, trail, probe, ti.max(probe[2] + 1, probe_share * raised))
+                    if probe[0] == probe[1]:
+                        reached = probe[2]
+                        budget = ti.min(budget, ti.i32(share * (reached + fills)))
                     probe_at *= 2
         while top > 0:  # over budget: the stack emptied, for the restart
             top -= 1
             links[1, links[0, top]] = _UNLISTED
-        unmark(trail, values.shape[2], tail)
+        unmark(trail, values.shape[2], probe[1])
         return ti.Vector([raised, budget, reached])
 
     @ti.func
@@ -1403,7 +1447,8 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         ``run``. ``trail``: (3, padded cells), its rows ``raise_cut``'s and ``flood``'s, all 0 in row 2."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
-            cut = raise_cut(values, pen, header, links, trail, cells, cap, run[_MEND.budget], run[_MEND.fills])
+            cut = raise_cut(values, pen, header, links, trail, cells, cap, run[_MEND.budget], run[_MEND.restart],
+                            run[_MEND.fills], run[_MEND.probe_share])
             raised, budget, spent = cut[0], cut[1], cut[0] * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, cut[2], spent
             run[_MENDED.gave_up] = ti.select(spent > budget, 1, 0)
@@ -2004,8 +2049,9 @@ class _Layers(_LayerArrays):
             self.trail.fill(0)
         cells_in_layer = self.values.shape[1] * self.values.shape[2]
         fills = self._fills()
-        restart = cells_in_layer if self.searched is None else self.searched + fills
-        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), fills, go=1), _MendResult)
+        restart = max(cells_in_layer if self.searched is None else self.searched + fills, 1)
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), restart, fills, PROBE_SHARE,
+                               go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, cap=self.cap, run=run)
         outcome = _outcome(_MendResult, run)

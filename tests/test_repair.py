@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 
 import tdp
 from tdp import engine as engine_module
+from tdp import stencil
 from tdp.engine import Engine
 from tdp.random_worlds import maze
 
@@ -320,3 +321,47 @@ def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_p
         engine.set_cells(cells, np.zeros(len(cells), bool))
         engine.converge()
         assert_equal_to_a_fresh_converge(engine, options)
+
+
+def reachable_by_the_stencil(occupied: np.ndarray, source, corner_cutting: bool) -> int:
+    """The free cells a chain of the 16-neighbour stencil's allowed moves joins to ``source`` (a plain BFS)."""
+    rows, cols = occupied.shape
+    free = lambda r, c: 0 <= r < rows and 0 <= c < cols and not occupied[r, c]  # noqa: E731
+    seen, queue = {tuple(source)}, [tuple(source)]
+    for r, c in queue:
+        for move in stencil.moves(16, corner_cutting):
+            there = (r + move.dr, c + move.dc)
+            if there not in seen and free(*there) and all(free(r + dr, c + dc) for dr, dc in move.crossed):
+                seen.add(there)
+                queue.append(there)
+    return len(seen)
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True])
+@pytest.mark.parametrize("density", [0.2, 0.4])
+def test_the_probe_counts_the_cells_the_source_still_reaches(monkeypatch, corner_cutting, density):
+    """The mend's probe floods by the moves that cross no cell - by rows where those are the straight ones - and
+    must count exactly the cells the whole stencil joins to the goal (a plain BFS here), sealed in or not: a ring
+    round the goal, then a box on another cell."""
+    monkeypatch.setattr(engine_module, "PROBE_SHARE", 1000)  # the first burst counts them all
+    rng = np.random.default_rng(int(density * 10) + corner_cutting)
+    occupied = rng.random((60, 70)) < density
+    goal = (30, 35)
+    occupied[goal] = False
+    engine = Engine(occupied, goal, corner_cutting=corner_cutting)
+    engine.converge()
+    kernels, outcomes = engine._goal.kernels, []
+    mend = kernels.mend
+
+    def counted(**arguments):
+        mend(**arguments)
+        outcomes.append(engine_module._outcome(engine_module._MendResult, arguments["run"]))
+
+    monkeypatch.setattr(kernels, "mend", counted)
+    for cells in (ring_round(occupied, goal, 5), np.array([(i, j) for i in range(40, 43) for j in range(10, 13)])):
+        cells = cells[~engine.occupied[cells[:, 0], cells[:, 1]]]
+        engine.set_cells(cells, np.ones(len(cells), bool))
+        engine.converge()
+        assert outcomes[-1].reached in (-1, reachable_by_the_stencil(engine.occupied, goal, corner_cutting))
+        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+    assert outcomes[0].reached >= 0  # the ring raised enough to start the probe
