@@ -1055,10 +1055,11 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
 
 def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
-    """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, breadth first, in bursts.
-    It steps by the moves that cross no cell: every other move's crossed cells must be free and make a way of those
-    moves from one end to the other (ARCHITECTURE §4), so they reach the same cells - four loads a cell where the
-    whole stencil takes forty. Its queue and marks are rows 1 and 2 of a mend's ``trail``."""
+    """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, in bursts. It steps by
+    the moves that cross no cell: every other move's crossed cells must be free and make a way of those moves from
+    one end to the other (ARCHITECTURE §4), so they reach the same cells - where those are the four straight moves,
+    a scanline fill of a few loads a cell, where the whole stencil takes forty. Its queue and marks are rows 1 and 2
+    of a mend's ``trail``."""
     blocked = cell.blocked
     steps = tuple(m for m in cell.moves if not m.crossed)
     spans = all(abs(m.dr) + abs(m.dc) == 1 for m in steps)  # the four straight steps: fill by rows
