@@ -1070,6 +1070,18 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return trail[2, i * width + j] == 0 and not blocked(pen[0, i, j])
 
     @ti.func
+    def enqueue(trail: ti.template(), width, i, j, tail):
+        """Mark padded cell (i, j) and queue it as a seed at ``tail`` (its row and column packed in one int32:
+        ``(i << 16) | j``); returns the new tail."""
+        trail[1, tail], trail[2, i * width + j] = (i << 16) | j, 1
+        return tail + 1
+
+    @ti.func
+    def queued(trail: ti.template(), k):
+        """The padded (row, column) of seed ``k`` of the queue (``enqueue``)."""
+        return trail[1, k] >> 16, trail[1, k] & 0xFFFF
+
+    @ti.func
     def flood(pen: ti.template(), header: ti.template(), trail: ti.template(), state, until):
         """Go on with the flood (``state``: (head, tail, cells marked) - its queue of seeds ``trail[1, head:tail]``,
         each a cell marked; nothing queued yet: start at the source, if free) until ``until`` cells are marked or no
@@ -1081,9 +1093,9 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
         head, tail, marked = state[0], state[1], state[2]
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if tail == 0 and not blocked(pen[0, i, j]):
-            trail[1, 0], trail[2, i * width + j], tail, marked = (i << 16) | j, 1, 1, 1
+            tail, marked = enqueue(trail, width, i, j, tail), 1
         while head < tail and marked < until:
-            i, j = trail[1, head] >> 16, trail[1, head] & 0xFFFF  # a queued cell: (row << 16) | column
+            i, j = queued(trail, head)
             head += 1
             if ti.static(spans):
                 left, right = j, j
@@ -1099,16 +1111,14 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     for v in range(left, right + 1):
                         free = open_cell(pen, trail, width, i + row, v)
                         if free and not run:
-                            trail[1, tail], trail[2, (i + row) * width + v] = ((i + row) << 16) | v, 1
-                            tail += 1
+                            tail = enqueue(trail, width, i + row, v, tail)
                             marked += 1
                         run = free
             else:
                 for m in ti.static(steps):
                     u, v = i + m.dr, j + m.dc
                     if open_cell(pen, trail, width, u, v):
-                        trail[1, tail], trail[2, u * width + v] = (u << 16) | v, 1
-                        tail += 1
+                        tail = enqueue(trail, width, u, v, tail)
                         marked += 1
         return ti.Vector([head, tail, marked])
 
@@ -1117,7 +1127,7 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
         """Clear the marks of a flood that queued ``tail`` seeds (``width``: the padded layer's): each seed's and,
         filling by spans, the marked run of its row round it."""
         for k in range(tail):
-            i, j = trail[1, k] >> 16, trail[1, k] & 0xFFFF
+            i, j = queued(trail, k)
             trail[2, i * width + j] = 0
             if ti.static(spans):
                 left, right = j - 1, j + 1
@@ -1742,6 +1752,11 @@ class _LayerArrays:
     values = src
 
     @property
+    def padded_cells(self) -> int:
+        """Cells of a layer, padding included (a search's and a mend's arrays have an entry per cell)."""
+        return self.values.shape[1] * self.values.shape[2]
+
+    @property
     def dst(self):
         return self.buffers[1 - self.current]
 
@@ -2033,7 +2048,7 @@ class _Layers(_LayerArrays):
     def _make_links(self) -> None:
         """The search's buckets (a cell's links, then the ring's heads), made at the first search or mend."""
         if self.links is None:
-            self.links = ti.ndarray(ti.i32, (2, self.values.shape[1] * self.values.shape[2] + self.ring))
+            self.links = ti.ndarray(ti.i32, (2, self.padded_cells + self.ring))
             self.links.fill(_UNLISTED)
 
     def _mend(self, focus: tuple[int, int] | None) -> int:
@@ -2046,11 +2061,10 @@ class _Layers(_LayerArrays):
         cells = _cells_array(np.concatenate(self.edits))
         self._make_links()
         if self.trail is None:
-            self.trail = ti.ndarray(ti.i32, (3, self.values.shape[1] * self.values.shape[2]))
+            self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))
             self.trail.fill(0)
-        cells_in_layer = self.values.shape[1] * self.values.shape[2]
         fills = self._fills()
-        restart = max(cells_in_layer if self.searched is None else self.searched + fills, 1)
+        restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), restart, fills, PROBE_SHARE,
                                go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
@@ -2065,7 +2079,7 @@ class _Layers(_LayerArrays):
     def _fills(self) -> int:
         """A reset's price in cells a search takes: the last reset's time over the last search's per cell, at most
         one per FILLS_PER_CELL cells of the layer (a first reset's time may hold compiling)."""
-        most = self.values.shape[1] * self.values.shape[2] // FILLS_PER_CELL
+        most = self.padded_cells // FILLS_PER_CELL
         if self.reset_s is None or self.cell_s is None:
             return most
         return min(most, int(self.reset_s / self.cell_s))
