@@ -221,11 +221,11 @@ def route_middle(field: tdp.DistanceField, reference: np.ndarray) -> tuple[tuple
 def pocket_ring(field: tdp.DistanceField, reference: np.ndarray, around_goal: bool) -> list[tuple[int, int]]:
     """The free cells of a square ring around the farthest reachable cell, side an eighth of the map's, or around
     the goal, side a sixteenth (clipped to the map, whose edge closes it): blocked, it seals off the pocket inside."""
-    reachable = np.where(np.isfinite(reference), reference, -1.0)
     rows, cols = reference.shape
     if around_goal:
         (r, c), half = field.goal, max(max(rows, cols) // 32, 2)
     else:
+        reachable = np.where(np.isfinite(reference), reference, -1.0)
         r, c = (int(v) for v in np.unravel_index(np.argmax(reachable), reference.shape))
         half = max(max(rows, cols) // 16, 2)
     top, bottom, left, right = max(r - half, 0), min(r + half, rows - 1), max(c - half, 0), min(c + half, cols - 1)

@@ -228,6 +228,22 @@ def test_a_closed_door_sends_the_region_behind_it_round_by_the_far_door():
     assert_equal_to_a_fresh_converge(engine, {})
 
 
+def farthest(engine: Engine) -> tuple[int, int]:
+    """The reachable cell of the goal layer farthest from the goal."""
+    distances = engine.goal_distances()
+    return np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), distances.shape)
+
+
+def ring_round(occupied: np.ndarray, centre, half: int, thickness: int = 2) -> np.ndarray:
+    """The free cells of a square ring ``thickness`` cells thick, outer half-side ``half``, round ``centre``
+    (clipped to the map); two thick, no move of the stencil jumps it, corners cut or not."""
+    ring = np.zeros(occupied.shape, bool)
+    ring[max(centre[0] - half, 0):centre[0] + half + 1, max(centre[1] - half, 0):centre[1] + half + 1] = True
+    inner = half - thickness
+    ring[max(centre[0] - inner, 0):centre[0] + inner + 1, max(centre[1] - inner, 0):centre[1] + inner + 1] = False
+    return np.argwhere(ring & ~occupied)
+
+
 @pytest.mark.parametrize("corridor", [1, 3])
 @pytest.mark.parametrize("before, restart_share", [("converged", 1e6), ("focused", 1e-6), ("focused", 1e6)])
 def test_a_box_sealing_off_most_of_a_maze_is_mended_restarted_or_repaired_to_the_same_values(monkeypatch, corridor,
@@ -243,8 +259,7 @@ def test_a_box_sealing_off_most_of_a_maze_is_mended_restarted_or_repaired_to_the
     occupied = maze(129, corridor, seed=corridor)
     engine = Engine(occupied, (1, 1))
     engine.converge()
-    far = np.unravel_index(np.argmax(np.where(np.isfinite(engine.goal_distances()), engine.goal_distances(), -1)),
-                           occupied.shape)
+    far = farthest(engine)
     middle = engine.trace(0, tuple(int(v) for v in far), occupied.size)[-40]
     if before == "focused":
         engine.reset()
@@ -268,27 +283,13 @@ def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
     occupied[1, 1] = False
     engine = Engine(occupied, (1, 1))
     engine.converge()
-    distances = engine.goal_distances()
-    far = np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), occupied.shape)
-    rows, cols = (slice(max(v - 8, 0), v + 9) for v in far)
-    ring = np.zeros(occupied.shape, bool)
-    ring[rows, cols] = True
-    ring[max(far[0] - 7, 0):far[0] + 8, max(far[1] - 7, 0):far[1] + 8] = False
-    cells = np.argwhere(ring & ~occupied)
+    far = farthest(engine)
+    cells = ring_round(occupied, far, 8, thickness=1)
     for sealed in (True, False):
         engine.set_cells(cells, np.full(len(cells), sealed))
         engine.converge()
         assert engine.converged_by() == "mend" and np.isinf(engine.goal_distances()[far]) == sealed
         assert_equal_to_a_fresh_converge(engine, {})
-
-
-def ring_round(occupied: np.ndarray, centre, half: int) -> np.ndarray:
-    """The free cells of a square ring two cells thick, outer half-side ``half``, round ``centre`` (clipped to the
-    map): no move of the stencil jumps it, corners cut or not."""
-    ring = np.zeros(occupied.shape, bool)
-    ring[max(centre[0] - half, 0):centre[0] + half + 1, max(centre[1] - half, 0):centre[1] + half + 1] = True
-    ring[max(centre[0] - half + 2, 0):centre[0] + half - 1, max(centre[1] - half + 2, 0):centre[1] + half - 1] = False
-    return np.argwhere(ring & ~occupied)
 
 
 @pytest.mark.parametrize("corner_cutting, weighted", [(False, False), (True, False), (False, True)])
@@ -308,8 +309,7 @@ def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_p
     options = dict(corner_cutting=corner_cutting, cost=1 + 4 * rng.random(occupied.shape) if weighted else None)
     engine = Engine(occupied, goal, **options)
     engine.converge()
-    distances = engine.goal_distances()
-    far = np.unravel_index(np.argmax(np.where(np.isfinite(distances), distances, -1)), occupied.shape)
+    far = farthest(engine)
     box = np.array([(goal[0] + i, goal[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
     edits = [(ring_round(occupied, goal, 4), "search"), (box, "search"), (ring_round(occupied, far, 7), "mend")]
     for cells, by in edits:
