@@ -1431,7 +1431,7 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     """Searching from the initial state (a scalar layer's only): ``search``."""
     rules = _search_rules(cell)
-    bucket_search, hand_over = rules.search, rules.hand_over
+    bucket_search, hand_over, store_penalty = rules.search, rules.hand_over, cell.store_penalty
 
     @kernel
     def search(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
@@ -1451,13 +1451,20 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.queue, cells: t.cells, cap: ti.f32, run: t.ints):
+             trail: t.queue, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32,
+             run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
         _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in
-        ``run``. ``trail``: (3, padded cells), its rows ``raise_cut``'s and ``flood``'s, all 0 in row 2."""
+        ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them back for it). ``trail``:
+        (3, padded cells), its rows ``raise_cut``'s and ``flood``'s, all 0 in row 2."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
+            for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
+                i, j = cells[k, 0] + PAD, cells[k, 1] + PAD
+                store_penalty(pen, 0, i, j, 0, penalties[k])
+                if penalties[k] > MAX_COST:
+                    values[0, i, j] = cap
             cut = raise_cut(values, pen, header, links, trail, cells, cap, run[_MEND.budget], run[_MEND.restart],
                             run[_MEND.fills], run[_MEND.probe_share])
             raised, budget, spent = cut[0], cut[1], cut[0] * RAISE_COST
@@ -1681,6 +1688,11 @@ def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
 
 
 # ------------------------------------------------------------------------------------------------------- host class
+def _painted_array(name: str) -> property:
+    """A layer's array ``name``, the edits it holds back painted into it first (:meth:`_LayerArrays.paint`)."""
+    return property(lambda layer: getattr(layer._painted(), name))
+
+
 class _LayerArrays:
     """One kind of layer, self-describing: the goal's (scalar, ``lanes`` = 0) or the node windows (``lanes`` packed
     per cell). It holds its kernels, two value buffers (Jacobi: ``src`` the values, ``dst`` the next), the
@@ -1695,17 +1707,23 @@ class _LayerArrays:
         self.lanes, (self.rows, self.cols), self.cap = kernels.lanes, side, float(cap)
         self.ring = _search_buckets(max_cost)  # the search's buckets
         shape = (groups, self.rows + 2 * PAD, self.cols + 2 * PAD)
-        self.buffers = [self._array(shape), self._array(shape)]
-        self.pen = ti.ndarray(ti.i32 if self.lanes else ti.f32, shape)  # packed: a bit per lane (1 blocked)
+        stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
+        # the arrays the kernels take, behind properties that paint the edits held back first (``paint``)
+        self._arrays = SimpleNamespace(
+            buffers=[self._array(shape), self._array(shape)],
+            pen=ti.ndarray(ti.i32 if self.lanes else ti.f32, shape),  # packed: a bit per lane (1 blocked)
+            stamps=stamps,
+            keys=ti.ndarray(ti.f32, (*stamps.shape, 2)),  # lowering's and lifting's (_LOWER, _LIFT)
+            queue=ti.ndarray(ti.i32, (2, math.prod(stamps.shape) + 1)),  # serial settling's work lists
+            header=_device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0, 0, 0, 0, 0], np.int32)))
+        # edits (cells, penalties) a goal layer at its fixed point holds back for the mend that follows, which paints
+        # them in its own launch (a paint launch cost as much as a small mend)
+        self.unpainted: list[tuple[np.ndarray, np.ndarray]] = []
         self.grid_origins = np.asarray(origins, np.int32)
         self.origins = _device(self.grid_origins)
-        self.stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
-        self.keys = ti.ndarray(ti.f32, (*self.stamps.shape, 2))  # lowering's and lifting's (_LOWER, _LIFT)
-        self.queue = ti.ndarray(ti.i32, (2, math.prod(self.stamps.shape) + 1))  # serial settling's work lists
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
         self.listed = False  # the work list of round ``tick`` holds the active tiles (kept by settling and painting)
         self.round_open = False  # the last launch's allowance cut round ``tick`` short: it goes on at the next
-        self.header = _device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0, 0, 0, 0, 0], np.int32))
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
         # (cells as bytes, this kind's values there) sampled while idle; dropped by everything that changes values:
@@ -1726,7 +1744,7 @@ class _LayerArrays:
         self.trail = None  # a mend's raised cells, then its seeds (``_raise_rules``), made at the first mend
         # the cells edited since the layer was last at its fixed point (None: it is not, or may not be): a converge
         # mends them cell by cell (:meth:`_mend`)
-        self.edits: list[np.ndarray] | None = None
+        self.edits: list[tuple[np.ndarray, np.ndarray]] | None = None
         self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
         self.searched: int | None = None  # cells the last search to the end took (``_mend``'s price of a restart)
         self.cell_s: float | None = None  # ... and the seconds it took per cell
@@ -1745,9 +1763,19 @@ class _LayerArrays:
             return _freed_when_dropped(ti.Vector.ndarray(self.lanes, ti.f32, shape))
         return ti.ndarray(ti.f32, shape)
 
+    def _painted(self) -> SimpleNamespace:
+        """The arrays, every edit held back painted into them first (``paint``)."""
+        if self.unpainted:
+            cells, penalties = (np.concatenate(parts) for parts in zip(*self.unpainted))
+            self.unpainted = []
+            self._paint_now(cells, penalties)
+        return self._arrays
+
+    pen, stamps, keys, queue, header = (_painted_array(name) for name in ("pen", "stamps", "keys", "queue", "header"))
+
     @property
     def src(self):
-        return self.buffers[self.current]
+        return self._painted().buffers[self.current]
 
     values = src
 
@@ -1758,7 +1786,7 @@ class _LayerArrays:
 
     @property
     def dst(self):
-        return self.buffers[1 - self.current]
+        return self._painted().buffers[1 - self.current]
 
     def changed(self) -> int:
         """Cells the last iteration changed."""
@@ -1797,20 +1825,27 @@ class _LayerArrays:
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied; a weighted layer's free cells their cost, which
         widens the search's ring if it needs more buckets: made again at the next search) and wake the tiles around
-        them."""
+        them. A goal layer at its fixed point holds the edit back (:attr:`unpainted`): the mend that follows paints
+        it in its own launch, and anything else that reads the arrays paints it first."""
         if self.kernels.weighted:
             ring = _search_buckets(float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0)))
             if ring > self.ring:
                 self.ring, self.links = ring, None
+        if self.edits is not None and not self.lanes:
+            self.unpainted.append((cells, penalties))
+        else:
+            self._paint_now(cells, penalties)
+        self.woken = self.tick
+        self._idle_sample = self.focus_move = None
+        if self.edits is not None:
+            self.edits.append((cells, penalties))
+
+    def _paint_now(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         self.kernels.paint(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, keys=self.keys,
                            header=self.header, queue=self.queue, origins=self.origins, cells=cells,
                            penalties=penalties, cap=self.cap,
                            run=_launch(_PaintRun(self.tick + int(self.round_open), int(self.listed))))  # an open
         # round goes on
-        self.woken = self.tick
-        self._idle_sample = self.focus_move = None
-        if self.edits is not None:
-            self.edits.append(cells)
 
     def reset(self) -> None:
         """The values back to the initial state of eqs. 5 and 10 (the other buffer follows lazily, :meth:`iterate`);
@@ -2058,7 +2093,8 @@ class _Layers(_LayerArrays):
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
-        cells = _cells_array(np.concatenate(self.edits))
+        cells, penalties = (np.concatenate(parts) for parts in zip(*self.edits))
+        cells, self.unpainted = _cells_array(cells), []  # the mend paints them all (those painted: again, as they are)
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))
@@ -2068,7 +2104,8 @@ class _Layers(_LayerArrays):
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), restart, fills, PROBE_SHARE,
                                go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
-                          links=self.links, trail=self.trail, cells=cells, cap=self.cap, run=run)
+                          links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
+                          run=run)
         outcome = _outcome(_MendResult, run)
         if outcome.gave_up:  # most of the layer cut off or changed: a search from the source costs less
             self.reset()

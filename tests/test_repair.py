@@ -12,7 +12,7 @@ from tdp import stencil
 from tdp.engine import Engine
 from tdp.random_worlds import maze
 
-OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "step"]
+OPERATIONS = ["box", "free_box", "wall", "open_wall", "scatter", "goal", "step", "read"]
 
 
 @st.composite
@@ -26,7 +26,8 @@ def edit_sequences(draw):
 
 def apply(operation: str, engine: Engine, rng: np.random.Generator) -> None:
     """One edit of the kind named, at a random place: a 3 x 3 box (occupied or freed), a wall across the map with
-    or without a gap (cutting off a pocket) or its removal, scattered cells, a goal move, or a few iterations."""
+    or without a gap (cutting off a pocket) or its removal, scattered cells, a goal move, a few iterations, or a
+    read of the goal layer (an occupied cell reads inf at once, though a mend paints the edits it follows)."""
     rows, cols = engine.occupied.shape
     if operation in ("box", "free_box"):
         r, c = rng.integers(0, rows - 2), rng.integers(0, cols - 2)
@@ -50,8 +51,10 @@ def apply(operation: str, engine: Engine, rng: np.random.Generator) -> None:
     elif operation == "goal":
         free = np.argwhere(~engine.occupied)
         engine.set_goal(tuple(free[rng.integers(0, len(free))]))
-    else:
+    elif operation == "step":
         engine.step(int(rng.integers(1, 6)))
+    else:
+        assert np.isinf(engine.goal_distances()[engine.occupied]).all()
 
 
 def assert_equal_to_a_fresh_converge(engine: Engine, options: dict) -> None:
@@ -210,6 +213,33 @@ def test_distance_field_repairs_after_set_occupied_and_set_goal():
     fresh = tdp.DistanceField(tdp.GridMap(occupied), (49, 59))
     fresh.converge()
     np.testing.assert_array_equal(field.distances(), fresh.distances())
+
+
+def test_a_mend_paints_the_edits_it_follows_in_its_own_launch(monkeypatch):
+    """On a goal layer at its fixed point an edit launches nothing: the mend after it paints it (a launch saved,
+    most of a small edit's cost). Anything that reads the layer first paints it: the cells read occupied at once,
+    and the mend after paints them again, as they are, to a fresh converge's values."""
+    occupied = np.random.default_rng(8).random((40, 50)) < 0.2
+    occupied[0, 0] = False
+    engine = Engine(occupied, (0, 0))
+    engine.converge()
+    launches = []
+    for name in ("paint", "mend"):
+        kernel = getattr(engine._goal.kernels, name)
+        monkeypatch.setattr(engine._goal.kernels, name,
+                            lambda kernel=kernel, name=name, **arguments: (launches.append(name), kernel(**arguments)))
+    box = np.array([(r, c) for r in range(20, 23) for c in range(20, 23)])
+    engine.set_cells(box, np.ones(9, bool))
+    engine.converge()
+    assert launches == ["mend"] and engine.converged_by() == "mend"
+    assert_equal_to_a_fresh_converge(engine, {})
+    engine.set_cells(box[:4], np.zeros(4, bool))
+    read = engine.goal_distances()
+    assert launches == ["mend", "paint"] and np.isinf(read[box[4:, 0], box[4:, 1]]).all()
+    engine.set_cells(box[4:], np.zeros(5, bool))
+    engine.converge()
+    assert launches == ["mend", "paint", "mend"]
+    assert_equal_to_a_fresh_converge(engine, {})
 
 
 def test_a_closed_door_sends_the_region_behind_it_round_by_the_far_door():
