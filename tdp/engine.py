@@ -166,7 +166,8 @@ class _IterateRun(NamedTuple):
 class _SettleRun(NamedTuple):
     """``settle_serially``'s launch: the first round's number, how many rounds at most, the most active tiles to go on
     with, the focus (padded layer coordinates; row -1: none), the sweeps allowed (0: any number), whether round
-    ``tick``'s work list is kept (1) or must be listed first (0)."""
+    ``tick``'s work list is kept (1) or must be listed first (0), whether round ``tick`` is open (edits painted in
+    the launch wake their tiles for the round after it)."""
 
     tick: int
     rounds: int
@@ -175,6 +176,7 @@ class _SettleRun(NamedTuple):
     focus_col: int
     sweeps: int
     listed: int
+    round_open: int
 
 
 class _SettleResult(NamedTuple):
@@ -1296,7 +1298,8 @@ class _KernelTypes:
     """The ndarray types of a layer kind's kernel parameters, ``lanes`` packed layers per cell (0: scalar): the
     layer's ``values`` (``src``, ``dst``), ``penalties`` (float32, or a bit per lane in an int32), an int32 ``ints``
     (``header``, results), ``cells`` (n, 2) int32 (``cells``, ``origins``), ``stamps``, ``keys``, ``samples``
-    (steps, cells, 1 + nodes) float32 and the serial settling's work lists ``queue``."""
+    (steps, cells, 1 + nodes) float32, the serial settling's work lists ``queue`` and an edit's ``costs`` (its
+    cells' penalties)."""
 
     def __init__(self, lanes: int):
         self.values = ti.types.ndarray(dtype=ti.f32 if lanes == 0 else ti.types.vector(lanes, ti.f32), ndim=3)
@@ -1307,6 +1310,7 @@ class _KernelTypes:
         self.keys = ti.types.ndarray(dtype=ti.f32, ndim=4)
         self.samples = ti.types.ndarray(dtype=ti.f32, ndim=3)
         self.queue = ti.types.ndarray(dtype=ti.i32, ndim=2)
+        self.costs = ti.types.ndarray(dtype=ti.f32, ndim=1)
 
 
 def _iterate_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
@@ -1357,7 +1361,7 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     """Settling, converge()'s rounds of tiles: ``settle`` (one parallel round) and ``settle_serially`` (rounds on
     the calling thread, with a focus and an allowance of sweeps)."""
     settle_all, band, lowest = _settle_rules(cell).settle_all, cell.band, cell.lowest
-    successor_move = cell.successor_move
+    successor_move, paint_cells = cell.successor_move, _paint_rules(cell).paint_cells
 
     @kernel
     def settle(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, cap: ti.f32,
@@ -1376,6 +1380,24 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     @kernel
     def settle_serially(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
                         queue: t.queue, cap: ti.f32, run: t.ints):
+        """``settle_rounds``, on the calling thread."""
+        settle_rounds(values, pen, stamps, keys, header, queue, cap, run)
+
+    @kernel
+    def settle_painting(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
+                        queue: t.queue, origins: t.cells, cells: t.cells, penalties: t.costs, cap: ti.f32,
+                        run: t.ints):
+        """``settle_serially`` after painting the edits ``_LayerArrays.paint`` held back (``paint_cells``: a
+        launch saved, most of a small edit's cost)."""
+        ti.loop_config(serialize=True)
+        for _ in range(1):
+            paint_cells(values, values, pen, stamps, keys, header, queue, origins, cells, penalties, cap,
+                        run[_SETTLE.tick] + run[_SETTLE.round_open], run[_SETTLE.listed])
+            settle_rounds(values, pen, stamps, keys, header, queue, cap, run)
+
+    @ti.func
+    def settle_rounds(values: ti.template(), pen: ti.template(), stamps: ti.template(), keys: ti.template(),
+                      header: ti.template(), queue: ti.template(), cap, run: ti.template()):
         """converge()'s rounds on the calling thread (``run``: a _SettleRun): up to ``rounds`` rounds and ``sweeps``
         sweeps of tiles (0: any number; a round whose sweeps
         are spent stays open, and the next launch goes on with it; scans count against them: ``_spent``) until
@@ -1451,8 +1473,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.queue, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1), cap: ti.f32,
-             run: t.ints):
+             trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
         _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in
@@ -1523,9 +1544,9 @@ def _setup_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     store_penalty(pen, g, i, j, lane, value)
 
 
-def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
-    """Editing: ``paint`` (cells occupied or freed, the tiles around them woken with keys) and ``stamp_cells``
-    (tiles woken for iterations after a goal move)."""
+def _paint_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """Painting edits into a kind of layer: ``paint_cells`` (``paint``'s work, which ``settle_painting`` does too,
+    for the edits ``_LayerArrays.paint`` held back)."""
     component, store, store_penalty = cell.component, cell.store, cell.store_penalty
     window_cell, width = cell.window_cell, cell.width
 
@@ -1543,45 +1564,57 @@ def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 key = ti.min(key, value)
         return key
 
+    @ti.func
+    def paint_cells(src: ti.template(), dst: ti.template(), pen: ti.template(), stamps: ti.template(),
+                    keys: ti.template(), header: ti.template(), queue: ti.template(), origins: ti.template(),
+                    cells: ti.template(), penalties: ti.template(), cap, tick, listed):
+        """Write changed cells' ``penalties`` (inf occupied; free 0, or a weighted layer's cost) into every layer
+        that contains them, and activate the tiles near them for iteration or round ``tick`` (``_stamp_near``; in
+        the work list if ``listed``). A newly occupied cell takes its obstacle value, the cap, at once in both
+        buffers, and keys the lifting of the cells near it that depended on it by its old value (they held more);
+        the cells freed key their lowering by ``freed_key``, the smallest over them (a way through several freed
+        cells enters from one of their neighbours). On the calling thread, inside a serial loop."""
+        rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
+        freed = ti.math.inf
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols:
+                    store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
+                    if penalties[k] > MAX_COST:
+                        old = component(src[g, a + PAD, b + PAD], lane)
+                        store(src, g, a + PAD, b + PAD, lane, cap)
+                        store(dst, g, a + PAD, b + PAD, lane, cap)
+                        _stamp_near(stamps, keys, queue, g, a, b, tick, listed, _LIFT, old)
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
+                    freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
+        for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
+            for lane in range(width):
+                a, b = window_cell(origins, cells, k, g, lane)
+                if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
+                    _stamp_near(stamps, keys, queue, g, a, b, tick, listed, _LOWER, freed)
+
+    return SimpleNamespace(paint_cells=paint_cells)
+
+
+def _edit_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Editing: ``paint`` (cells occupied or freed, the tiles around them woken with keys) and ``stamp_cells``
+    (tiles woken for iterations after a goal move)."""
+    window_cell, width, paint_cells = cell.window_cell, cell.width, _paint_rules(cell).paint_cells
+
     @kernel
     def paint(src: t.values, dst: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints,
-              queue: t.queue, origins: t.cells, cells: t.cells, penalties: ti.types.ndarray(dtype=ti.f32, ndim=1),
-              cap: ti.f32, run: t.ints):
-        """Write changed cells' ``penalties`` (inf occupied; free 0, or a weighted layer's cost) into every layer
-        that contains them, and activate the tiles near them for the next iteration or round (``run``: a _PaintRun;
-        ``_stamp_near``). A newly occupied cell takes its obstacle value, the cap, at once in both buffers, and
-        keys the lifting of the cells near it that depended on it by its old value (they held more); the cells freed
-        key their lowering by ``freed_key``, the smallest over them (a way through several freed cells enters from
-        one of their neighbours)."""
-        rows, cols = pen.shape[1] - 2 * PAD, pen.shape[2] - 2 * PAD
-        # A few cells per edit: cheaper than waking the threads. One outer loop, so that the three passes all run
-        # on the calling thread (a loop config holds for the next loop only: the later two woke the threads, twice,
-        # 0.2 ms of a small edit's 0.25)
+              queue: t.queue, origins: t.cells, cells: t.cells, penalties: t.costs, cap: ti.f32, run: t.ints):
+        """``paint_cells`` (``run``: a _PaintRun). A few cells per edit: cheaper than waking the threads. One outer
+        loop, so that its three passes all run on the calling thread (a loop config holds for the next loop only:
+        the later two woke the threads, twice, 0.2 ms of a small edit's 0.25)."""
         ti.loop_config(serialize=True)
         for _ in range(1):
-            freed = ti.math.inf
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols:
-                        store_penalty(pen, g, a + PAD, b + PAD, lane, penalties[k])
-                        if penalties[k] > MAX_COST:
-                            old = component(src[g, a + PAD, b + PAD], lane)
-                            store(src, g, a + PAD, b + PAD, lane, cap)
-                            store(dst, g, a + PAD, b + PAD, lane, cap)
-                            _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LIFT,
-                                        old)
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
-                        freed = ti.min(freed, freed_key(src, header, cap, g, a, b, lane))
-            for k, g in ti.ndrange(cells.shape[0], pen.shape[0]):
-                for lane in range(width):
-                    a, b = window_cell(origins, cells, k, g, lane)
-                    if 0 <= a < rows and 0 <= b < cols and penalties[k] <= MAX_COST:
-                        _stamp_near(stamps, keys, queue, g, a, b, run[_PAINT.tick], run[_PAINT.listed], _LOWER,
-                                    freed)
+            paint_cells(src, dst, pen, stamps, keys, header, queue, origins, cells, penalties, cap, run[_PAINT.tick],
+                        run[_PAINT.listed])
 
     @kernel
     def stamp_cells(stamps: t.stamps, pen: t.penalties, origins: t.cells, cells: t.cells, tick: ti.i32):
@@ -1765,11 +1798,18 @@ class _LayerArrays:
 
     def _painted(self) -> SimpleNamespace:
         """The arrays, every edit held back painted into them first (``paint``)."""
-        if self.unpainted:
-            cells, penalties = (np.concatenate(parts) for parts in zip(*self.unpainted))
-            self.unpainted = []
-            self._paint_now(cells, penalties)
+        held = self._held_back()
+        if held:
+            self._paint_now(*held)
         return self._arrays
+
+    def _held_back(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The edits ``paint`` held back, as (cells, penalties) in order, for a launch that paints them; none now."""
+        if not self.unpainted:
+            return None
+        cells, penalties = (np.concatenate(parts) for parts in zip(*self.unpainted))
+        self.unpainted = []
+        return _cells_array(cells), penalties
 
     pen, stamps, keys, queue, header = (_painted_array(name) for name in ("pen", "stamps", "keys", "queue", "header"))
 
@@ -1825,13 +1865,14 @@ class _LayerArrays:
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied; a weighted layer's free cells their cost, which
         widens the search's ring if it needs more buckets: made again at the next search) and wake the tiles around
-        them. A goal layer at its fixed point holds the edit back (:attr:`unpainted`): the mend that follows paints
-        it in its own launch, and anything else that reads the arrays paints it first."""
+        them. The goal layer holds the edit back (:attr:`unpainted`): the converge that follows paints it in its own
+        launch (a mend, or the first launch of rounds on the calling thread), and anything else that reads the
+        arrays paints it first."""
         if self.kernels.weighted:
             ring = _search_buckets(float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0)))
             if ring > self.ring:
                 self.ring, self.links = ring, None
-        if self.edits is not None and not self.lanes:
+        if not self.lanes:
             self.unpainted.append((cells, penalties))
         else:
             self._paint_now(cells, penalties)
@@ -2011,14 +2052,20 @@ class _Layers(_LayerArrays):
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         self.swept = 0
+        held = [self._held_back()]  # the edits held back, painted by the first launch on the calling thread
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
-            run = _launch(_SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed)),
-                          _SettleResult)
-            self.kernels.settle_serially(**arrays, queue=self.queue, run=run)
+            run = _launch(_SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed),
+                                     int(self.round_open)), _SettleResult)
+            if held[0]:
+                self.kernels.settle_painting(**arrays, queue=self.queue, origins=self.origins, cells=held[0][0],
+                                             penalties=held[0][1], run=run)
+                held[0] = None
+            else:
+                self.kernels.settle_serially(**arrays, queue=self.queue, run=run)
             outcome = _outcome(_SettleResult, run)
             self.listed = True
             self.tick += outcome.rounds
@@ -2093,8 +2140,9 @@ class _Layers(_LayerArrays):
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
+        self._held_back()  # the mend paints every edit since the fixed point (one painted already: again, as it is)
         cells, penalties = (np.concatenate(parts) for parts in zip(*self.edits))
-        cells, self.unpainted = _cells_array(cells), []  # the mend paints them all (those painted: again, as they are)
+        cells = _cells_array(cells)
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))

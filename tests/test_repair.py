@@ -215,30 +215,41 @@ def test_distance_field_repairs_after_set_occupied_and_set_goal():
     np.testing.assert_array_equal(field.distances(), fresh.distances())
 
 
-def test_a_mend_paints_the_edits_it_follows_in_its_own_launch(monkeypatch):
-    """On a goal layer at its fixed point an edit launches nothing: the mend after it paints it (a launch saved,
-    most of a small edit's cost). Anything that reads the layer first paints it: the cells read occupied at once,
-    and the mend after paints them again, as they are, to a fresh converge's values."""
-    occupied = np.random.default_rng(8).random((40, 50)) < 0.2
-    occupied[0, 0] = False
-    engine = Engine(occupied, (0, 0))
-    engine.converge()
-    launches = []
-    for name in ("paint", "mend"):
-        kernel = getattr(engine._goal.kernels, name)
-        monkeypatch.setattr(engine._goal.kernels, name,
+def count_launches(monkeypatch, engine: Engine, names: tuple) -> list:
+    """The goal layer's launches of the kernels ``names``, in order, from now on."""
+    launches, kernels = [], engine._goal.kernels
+    for name in names:
+        kernel = getattr(kernels, name)
+        monkeypatch.setattr(kernels, name,
                             lambda kernel=kernel, name=name, **arguments: (launches.append(name), kernel(**arguments)))
+    return launches
+
+
+@pytest.mark.parametrize("focused", [False, True])
+def test_a_converge_paints_the_edits_it_follows_in_its_own_launch(monkeypatch, focused):
+    """An edit of the goal layer launches nothing: the converge after it paints it - a mend at the fixed point, or
+    the first launch of rounds on the calling thread after a focused converge's frontier (the exact planner's tick)
+    - which saves a launch, most of a small edit's cost. Anything that reads the layer first paints it: the cells
+    read occupied at once, and the converge after goes on, to a fresh converge's values."""
+    occupied = np.random.default_rng(8).random((40, 50)) < 0.2
+    occupied[0, 0] = occupied[39, 49] = False
+    engine = Engine(occupied, (0, 0))
+    focus = (39, 49) if focused else None
+    engine.converge(focus=focus)
+    painting = "settle_painting" if focused else "mend"
+    launches = count_launches(monkeypatch, engine, ("paint", "mend", "settle_painting", "settle_serially"))
     box = np.array([(r, c) for r in range(20, 23) for c in range(20, 23)])
     engine.set_cells(box, np.ones(9, bool))
-    engine.converge()
-    assert launches == ["mend"] and engine.converged_by() == "mend"
-    assert_equal_to_a_fresh_converge(engine, {})
+    engine.converge(focus=focus)
+    assert launches[0] == painting and "paint" not in launches
     engine.set_cells(box[:4], np.zeros(4, bool))
     read = engine.goal_distances()
-    assert launches == ["mend", "paint"] and np.isinf(read[box[4:, 0], box[4:, 1]]).all()
+    assert launches[-1] == "paint" and np.isinf(read[box[4:, 0], box[4:, 1]]).all()
     engine.set_cells(box[4:], np.zeros(5, bool))
+    del launches[:]
+    engine.converge(focus=focus)
+    assert launches[0] == painting and "paint" not in launches
     engine.converge()
-    assert launches == ["mend", "paint", "mend"]
     assert_equal_to_a_fresh_converge(engine, {})
 
 
