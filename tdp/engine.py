@@ -1749,8 +1749,8 @@ class _LayerArrays:
             keys=ti.ndarray(ti.f32, (*stamps.shape, 2)),  # lowering's and lifting's (_LOWER, _LIFT)
             queue=ti.ndarray(ti.i32, (2, math.prod(stamps.shape) + 1)),  # serial settling's work lists
             header=_device(np.array([0, source[0], source[1], *_NO_FOCUS, 0, 0, 0, 0, 0, 0], np.int32)))
-        # edits (cells, penalties) a goal layer at its fixed point holds back for the mend that follows, which paints
-        # them in its own launch (a paint launch cost as much as a small mend)
+        # edits (cells, penalties) the goal layer holds back for the converge that follows, which paints them in its
+        # own launch (a paint launch cost as much as a small repair): ``paint``
         self.unpainted: list[tuple[np.ndarray, np.ndarray]] = []
         self.grid_origins = np.asarray(origins, np.int32)
         self.origins = _device(self.grid_origins)
@@ -2052,18 +2052,19 @@ class _Layers(_LayerArrays):
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         self.swept = 0
-        held = [self._held_back()]  # the edits held back, painted by the first launch on the calling thread
+        held = self._held_back()  # the edits held back, painted by the first launch on the calling thread
         arrays = dict(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                       cap=self.cap)
         aim = _NO_FOCUS if focus is None else focus
 
         def serially(done: int, rounds: int, serial_limit: int) -> tuple[int, bool]:
+            nonlocal held
             run = _launch(_SettleRun(self.tick, rounds, serial_limit, *aim, max_sweeps, int(self.listed),
                                      int(self.round_open)), _SettleResult)
-            if held[0]:
-                self.kernels.settle_painting(**arrays, queue=self.queue, origins=self.origins, cells=held[0][0],
-                                             penalties=held[0][1], run=run)
-                held[0] = None
+            if held:
+                self.kernels.settle_painting(**arrays, queue=self.queue, origins=self.origins, cells=held[0],
+                                             penalties=held[1], run=run)
+                held = None
             else:
                 self.kernels.settle_serially(**arrays, queue=self.queue, run=run)
             outcome = _outcome(_SettleResult, run)
@@ -2085,6 +2086,8 @@ class _Layers(_LayerArrays):
         # (the work that cannot reach the focus piles up), and a parallel round would settle them all.
         serial_tiles = self._serial_tiles() if focus is None else _NEVER
         rounds, finished = self._waves(limit, serial_tiles, serially, in_parallel)
+        if held:  # no launch ran (``max_rounds`` 0)
+            self._paint_now(*held)
         self.cut_short = state["cut"] or not finished
         # the focus's successor move as the last launch left it (None: unknown, a parallel round came last)
         self.focus_move = None if focus is None or self.cut_short else (focus, state["move"])
@@ -2140,7 +2143,7 @@ class _Layers(_LayerArrays):
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
-        self._held_back()  # the mend paints every edit since the fixed point (one painted already: again, as it is)
+        self.unpainted = []  # the mend paints every edit since the fixed point (one painted already: again, as it is)
         cells, penalties = (np.concatenate(parts) for parts in zip(*self.edits))
         cells = _cells_array(cells)
         self._make_links()

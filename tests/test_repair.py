@@ -249,6 +249,9 @@ def test_a_converge_paints_the_edits_it_follows_in_its_own_launch(monkeypatch, f
     del launches[:]
     engine.converge(focus=focus)
     assert launches[0] == painting and "paint" not in launches
+    engine.set_cells(box[:1], np.ones(1, bool))
+    engine.converge(max_rounds=0)  # no round, no launch: painted all the same
+    assert launches[-1] == "paint" and np.isinf(engine.goal_distances()[tuple(box[0])])
     engine.converge()
     assert_equal_to_a_fresh_converge(engine, {})
 
