@@ -7,21 +7,23 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   as a ``ti.types.vector`` so that one relaxation updates them all with SIMD (Taichi keeps them as LLVM vectors,
   ``real_matrix_scalarize=False``, which the JIT lowers to the host's widest registers). Group g, lane l is node
   g*LANES + l; unused lanes are walled in and stay at the cap;
-* an obstacle holds the cap (eq. 5), written into both buffers the moment a cell becomes occupied, so a move
-  into it yields at least the cap and never wins the minimum; the cells a move crosses are checked in a penalty
+* an obstacle holds the cap (eq. 5), written into both buffers when the edit is painted - at once in node
+  layers; the goal layer holds its edits back for the converge after them, which paints them in its own launch,
+  and anything else that reads it paints them first (``_LayerArrays.paint``) - so a move into it yields at least
+  the cap and never wins the minimum; the cells a move crosses are checked in a penalty
   array of the same cells as each layer (padding blocked): a move's candidate is ``D[Z] + |V - Z| + pen[crossed
   cells]``, pen 0 free and inf blocked. The goal layer's is float32; a node window's is one int32 word per cell, a
   bit per lane (1 blocked), so that the penalties of 32 lanes take the memory of one (``crossing``).
 
 Kernels come from ``_kernels_for``, one set per compile-time spec - lanes (0 for the goal layer, LANES for node
 windows), neighbourhood, corner rule - closed over as constants, built from small rule factories (``_lane_rules``,
-``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``, ``_search_rules``) by one kernel factory per
-phase: iterate, settle, search, set up, edit, read. A launch's several parameters travel as a named tuple
-(``_SettleRun`` ...). Each kind of layer (``_LayerArrays``: arrays, edits, reads; ``_Layers``: the work on them)
-knows its kernels, buffers, penalties, header (changed cells, source), cap and origins under the names of the
-kernels' parameters, and calls them with keywords. ``warm_up`` launches every kernel of the set on a scratch layer.
-Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their inputs changed in the previous
-iteration). Which kernel runs when, and on how many threads (``_Layers._waves`` alone decides): ARCHITECTURE §7.
+``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``, ``_search_rules``, ``_paint_rules`` ...)
+by one kernel factory per phase: iterate, settle, search, set up, edit, read. A launch's several parameters
+travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays``: arrays, edits, reads;
+``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells, source), cap and
+origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up`` launches every
+kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their
+inputs changed in the previous iteration). Which kernel runs when, and on how many threads (``_Layers._waves`` alone decides): ARCHITECTURE §7.
 
 Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
 Taichi reads their source.
