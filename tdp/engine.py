@@ -23,7 +23,8 @@ travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays
 ``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells, source), cap and
 origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up`` launches every
 kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their
-inputs changed in the previous iteration). Which kernel runs when, and on how many threads (``_Layers._waves`` alone decides): ARCHITECTURE §7.
+inputs changed in the previous iteration). Which kernel runs when, and on how many threads (``_Layers._waves``
+alone decides): ARCHITECTURE §7.
 
 Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
 Taichi reads their source.
