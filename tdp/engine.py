@@ -1899,7 +1899,7 @@ class _LayerArrays:
         self.rebase()
         self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
         self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
-        self.mirrored, self.listed = False, False
+        self.mirrored = self.listed = self.round_open = False  # no round is open after a reset
         self.stamps.fill(-1)
         self.keys.fill(math.inf)
         self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
