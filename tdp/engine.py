@@ -1810,9 +1810,8 @@ class _LayerArrays:
         """The edits ``paint`` held back, as (cells, penalties) in order, for a launch that paints them; none now."""
         if not self.unpainted:
             return None
-        cells, penalties = (np.concatenate(parts) for parts in zip(*self.unpainted))
-        self.unpainted = []
-        return _cells_array(cells), penalties
+        held, self.unpainted = _joined(self.unpainted), []
+        return held
 
     pen, stamps, keys, queue, header = (_painted_array(name) for name in ("pen", "stamps", "keys", "queue", "header"))
 
@@ -2147,8 +2146,7 @@ class _Layers(_LayerArrays):
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
         the buckets emptied."""
         self.unpainted = []  # the mend paints every edit since the fixed point (one painted already: again, as it is)
-        cells, penalties = (np.concatenate(parts) for parts in zip(*self.edits))
-        cells = _cells_array(cells)
+        cells, penalties = _joined(self.edits)
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))
@@ -2222,6 +2220,12 @@ def _fitting(shape: tuple[int, int]) -> tuple[int, int]:
 def _cells_array(cells) -> np.ndarray:
     """(n, 2) int32, contiguous: how kernels take cells."""
     return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+
+
+def _joined(edits: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.ndarray]:
+    """Edits (cells, penalties), in order, as one launch's cells (``_cells_array``) and penalties."""
+    cells, penalties = (np.concatenate(parts) for parts in zip(*edits))
+    return _cells_array(cells), penalties
 
 
 def _changed_costs(current: np.ndarray | None, cells: np.ndarray, costs) -> tuple[np.ndarray, np.ndarray]:
