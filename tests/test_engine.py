@@ -1,4 +1,5 @@
 """The engine's windowed node layers against full-grid layers, cell for cell, through map changes."""
+import functools
 import gc
 import math
 from pathlib import Path
@@ -280,7 +281,7 @@ def test_warm_up_compiles_every_kernel_a_field_then_launches():
     engine = Engine(occupied, (0, 0), cost=np.ones((40, 40)))
     engine.warm_up()
     kernels = _kernels_for(0, 16, False, True).all
-    compiled = [len(kernel._primal.compiled_kernels) for kernel in kernels]
+    compiled = [len(kernel.kernel._primal.compiled_kernels) for kernel in kernels]
     engine.converge()
     engine.set_cells(np.array([(5, 5), (6, 6)]), np.array([True, True]))
     engine.set_costs(np.array([(9, 9)]), 3.0)
@@ -293,4 +294,55 @@ def test_warm_up_compiles_every_kernel_a_field_then_launches():
     engine.trace(0, (39, 39), 10)
     engine.set_goal((10, 10))
     engine.converge(focus=(0, 0))
-    assert [len(kernel._primal.compiled_kernels) for kernel in kernels] == compiled
+    assert [len(kernel.kernel._primal.compiled_kernels) for kernel in kernels] == compiled
+
+
+def _counting(kernel, calls: list):
+    """``kernel``, each call recorded in ``calls``."""
+    @functools.wraps(kernel)
+    def counted(**arguments):
+        calls.append(kernel.__name__)
+        return kernel(**arguments)
+    return counted
+
+
+def _every_kind_of_launch(nodes):
+    """A run through every kind of launch an engine makes - a search, paints, a mend, rounds focused and cut short,
+    iterations parallel and serial (a returned count), samples, traces, cost edits, a goal move - and what each
+    left: the goal layer and every node layer, the samples, the trace and the counts."""
+    occupied = random_map(48, 56, 0.2, 7)
+    engine = Engine(occupied, (1, 1), nodes=nodes, node_cap=40.0, cost=np.ones((48, 56)))
+    seen = [engine.converge()]
+    engine.set_cells(np.array([(10, 10), (11, 11), (30, 30)]), np.array([True, True, True]))
+    engine.set_costs(np.array([(20, 20), (21, 20)]), 4.0)
+    seen += [engine.converge(), engine.converged_by()]
+    engine.set_cells(np.array([(12, 12)]), np.array([True]))
+    seen += [engine.converge(focus=(47, 55)), engine.pending(), engine.converge(max_sweeps=3), engine.cut_short()]
+    engine.set_cells(np.array([(10, 10)]), np.array([False]))
+    engine.step(2)
+    seen += [engine.changed(), engine.advance(3, np.array([(5, 5), (40, 50)])), engine.sample(np.array([(2, 3)]))]
+    engine.step(200)
+    seen += [engine.trace(0, (47, 55), 30), engine.goal_distances()]
+    engine.set_goal((40, 40))
+    seen += [engine.converge(), engine.goal_distances()]
+    seen += [engine.node_distances(node) for node in range(len(nodes))]
+    return seen
+
+
+@pytest.mark.parametrize("nodes", [np.zeros((0, 2), int), np.array([(5, 5), (24, 30), (40, 50)])])
+def test_direct_launches_give_what_taichis_calls_give(monkeypatch, nodes):
+    """The launcher sets a kernel's arguments straight into Taichi's launch context after the first launch of each
+    kind of arguments: the same runs through every kind of launch, by that path and by Taichi's own calls, leave
+    the same values bit for bit, and the direct path is the one taken (Taichi's call runs once per kind)."""
+    taichis = []
+    for direct in (False, True):
+        monkeypatch.setattr(engine_module, "DIRECT_LAUNCH", direct)
+        taichis.append(_every_kind_of_launch(nodes))
+    for by_taichi, direct in zip(*taichis):
+        np.testing.assert_array_equal(np.asarray(by_taichi), np.asarray(direct))
+    calls = []
+    for lanes in (0, LANES):
+        for launcher in engine_module._kernels_for(lanes, 16, False, True).all:
+            monkeypatch.setattr(launcher, "kernel", _counting(launcher.kernel, calls))
+    _every_kind_of_launch(nodes)
+    assert calls == []
