@@ -24,7 +24,9 @@ goal let out again, and a goal move. Each edit is timed (``set_occupied``, ``set
 on the edited map and set against that field's from-scratch converge(), the two timed in turn: the ratio is a
 repair's - the edit and its converge, what a user pays (the goal layer paints an edit in the converge's launch) -
 to the from-scratch converge's, again the median of each pair's (as many pairs as fill about REPAIR_PAIRS_S
-seconds of from-scratch converges, from the repeats up to MAX_REPAIR_PAIRS); the converge's alone beside it.
+seconds of from-scratch converges, from the repeats up to MAX_REPAIR_PAIRS); the converge's alone beside it. A
+repair's work follows the cells it changes: each reports how many cells' distances it changed, its converge's time
+per changed cell, and the from-scratch converge's per cell it reaches.
 """
 from __future__ import annotations
 
@@ -275,6 +277,7 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
     fresh = field_on(field.occupied, field.goal)
     undo()
     field.converge()
+    start = field.distances().copy()
     edits, repairs, scratches = [], [], []
     for _ in range(repeats + 1):  # the first of each is a warm-up
         began = time.perf_counter()
@@ -294,10 +297,14 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
     field.set_occupied(changed & ~before, False)
     field.converge()
     edits_s, repairs_s, scratches_s = (np.array(times[1:]) for times in (edits, repairs, scratches))
+    cells_changed, reached = int(np.count_nonzero(start != repaired)), int(np.count_nonzero(np.isfinite(repaired)))
     return {"kind": kind, "edit_ms": float(np.median(edits_s)) * 1e3,
             "repair_ms": float(np.median(repairs_s)) * 1e3, "scratch_ms": float(np.median(scratches_s)) * 1e3,
             "ratio": float(np.median((edits_s + repairs_s) / scratches_s)),
             "converge_ratio": float(np.median(repairs_s / scratches_s)),
+            "changed": cells_changed, "reached": reached,
+            "converge_ns_per_changed": float(np.median(repairs_s)) * 1e9 / max(cells_changed, 1),
+            "scratch_ns_per_reached": float(np.median(scratches_s)) * 1e9 / max(reached, 1),
             "equal": bool(np.array_equal(repaired, fresh.distances()))}
 
 
@@ -359,9 +366,11 @@ def main() -> None:
                   f"{r['converge_ms']:.1f}", f"{r['ratio']:.2f}", *optional(r, "tcod"), *optional(r, "fmm"),
                   str(r["rounds"]), str(r["equal"])] for r in results])
     print_table(["map", "change", "edit ms", "converge ms", "from scratch ms", "(edit + converge) / from scratch",
-                 "converge / from scratch", "equal"],
+                 "converge / from scratch", "cells changed", "converge ns / cell changed",
+                 "from scratch ns / cell reached", "equal"],
                 [[r["map"], q["kind"], f"{q['edit_ms']:.2f}", f"{q['repair_ms']:.2f}", f"{q['scratch_ms']:.1f}",
-                  f"{q['ratio']:.3f}", f"{q['converge_ratio']:.3f}", str(q["equal"])]
+                  f"{q['ratio']:.3f}", f"{q['converge_ratio']:.3f}", str(q["changed"]),
+                  f"{q['converge_ns_per_changed']:.0f}", f"{q['scratch_ns_per_reached']:.0f}", str(q["equal"])]
                  for r in results for q in r.get("repairs", [])])
     summary = summarise(results)
     print(summary)
@@ -378,8 +387,10 @@ def optional(result: dict, reference: str) -> list[str]:
 def summarise(results: list[dict]) -> dict:
     """The issue's figures: median and worst from-scratch ratio to scipy's Dijkstra (worst on maps of
     CONVERGE_LARGE cells or more), the worst to tcod's, the median repair ratio (the edit and its converge) for
-    local changes (box, wall) and the worst for any change, the converge's alone for both, and the slowest 9-cell
-    box repair on a 256² map (its converge, and with its edit)."""
+    local changes (box, wall) and the worst for any change, the converge's alone for both; for local changes the
+    median share of the reachable cells a repair changes, its converge's time per changed cell and a from-scratch
+    converge's per reached cell (a repair's work follows the cells it changes); and the slowest 9-cell box repair on
+    a 256² map (its converge, and with its edit)."""
     repairs = [q for r in results for q in r.get("repairs", [])]
     local = [q for q in repairs if q["kind"] in ("box", "wall")]
     boxes_256 = [q for r in results if r["map"].startswith("random 256² ") for q in r.get("repairs", [])
@@ -390,6 +401,9 @@ def summarise(results: list[dict]) -> dict:
             "local_repair_median": _median(q["ratio"] for q in local),
             "repair_worst": _worst(q["ratio"] for q in repairs),
             "local_converge_median": _median(q["converge_ratio"] for q in local),
+            "local_changed_share_median": _median(q["changed"] / max(q["reached"], 1) for q in local),
+            "local_ns_per_changed_median": _median(q["converge_ns_per_changed"] for q in local),
+            "scratch_ns_per_reached_median": _median(q["scratch_ns_per_reached"] for q in local),
             "converge_worst": _worst(q["converge_ratio"] for q in repairs),
             "box_repair_256_worst_ms": max((q["repair_ms"] for q in boxes_256), default=float("nan")),
             "box_edit_and_repair_256_worst_ms": max((q["edit_ms"] + q["repair_ms"] for q in boxes_256),
