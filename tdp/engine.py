@@ -327,11 +327,11 @@ class _Launcher:
 
     Taichi 1.7 prices each argument of each launch anew in Python - its part of the instance's key, its checks,
     then its slot in the launch context: 5-10 µs an argument, 73 µs for the mend's eleven on the 2-core VM, where
-    setting the slots and launching take about 25. The first launch with a kind of arguments (:func:`_argument_kind`) goes
-    through Taichi's own call, which compiles, checks and launches; later ones set each argument's slot directly
-    (``Kernel.launch_kernel``'s calls, read from Taichi 1.7.4) and launch the instance the first one compiled. A
-    kernel or argument it does not handle (a struct, a returned vector), and any other Taichi version, always takes
-    Taichi's call."""
+    setting the slots and launching take about 25. The first launch with a kind of arguments
+    (:func:`_argument_kind`) goes through Taichi's own call, which compiles, checks and launches; later ones set each
+    argument's slot directly (``Kernel.launch_kernel``'s calls, read from Taichi 1.7.4) and launch the instance the
+    first one compiled. A kernel or argument it does not handle (a struct, a returned vector), and any other Taichi
+    version, always takes Taichi's call."""
 
     def __init__(self, kernel):
         self.kernel = kernel
