@@ -336,7 +336,7 @@ class _Launcher:
     def __init__(self, kernel):
         self.kernel = kernel
         self.__name__, self.__doc__, self.__signature__ = kernel.__name__, kernel.__doc__, inspect.signature(kernel)
-        self._names = tuple(inspect.signature(kernel).parameters)
+        self._names = tuple(self.__signature__.parameters)
         self._ready: dict = {}  # kinds of arguments -> (Taichi's kernel instance, argument setters, return reader)
 
     def __call__(self, **arguments):
@@ -397,10 +397,17 @@ def _return_reader(return_type):
         return False
     kind = return_type[0]
     if kind in _SIGNED:
-        return lambda context: (_taichi_runtime_ops.sync(), context.get_struct_ret_int((0,)))[1]
-    if id(kind) in _primitive.real_type_ids:
-        return lambda context: (_taichi_runtime_ops.sync(), context.get_struct_ret_float((0,)))[1]
-    return False
+        getter = "get_struct_ret_int"
+    elif id(kind) in _primitive.real_type_ids:
+        getter = "get_struct_ret_float"
+    else:
+        return False
+
+    def returned(context):
+        _taichi_runtime_ops.sync()
+        return getattr(context, getter)((0,))
+
+    return returned
 
 
 def sweeps_fitting(left_s: float, sweep_s: float, fewest: int, most: int) -> int:

@@ -334,12 +334,12 @@ def test_direct_launches_give_what_taichis_calls_give(monkeypatch, nodes):
     """The launcher sets a kernel's arguments straight into Taichi's launch context after the first launch of each
     kind of arguments: the same runs through every kind of launch, by that path and by Taichi's own calls, leave
     the same values bit for bit, and the direct path is the one taken (Taichi's call runs once per kind)."""
-    taichis = []
+    runs = []
     for direct in (False, True):
         monkeypatch.setattr(engine_module, "DIRECT_LAUNCH", direct)
-        taichis.append(_every_kind_of_launch(nodes))
-    for by_taichi, direct in zip(*taichis):
-        np.testing.assert_array_equal(np.asarray(by_taichi), np.asarray(direct))
+        runs.append(_every_kind_of_launch(nodes))
+    for by_taichi, by_launcher in zip(*runs):
+        np.testing.assert_array_equal(np.asarray(by_taichi), np.asarray(by_launcher))
     calls = []
     for lanes in (0, LANES):
         for launcher in engine_module._kernels_for(lanes, 16, False, True).all:
