@@ -337,7 +337,8 @@ class _Launcher:
         self.kernel = kernel
         self.__name__, self.__doc__, self.__signature__ = kernel.__name__, kernel.__doc__, inspect.signature(kernel)
         self._names = tuple(self.__signature__.parameters)
-        self._ready: dict = {}  # kinds of arguments -> (Taichi's kernel instance, argument setters, return reader)
+        # kinds of arguments -> (Taichi's kernel instance, argument setters, return reader); False: Taichi's call
+        self._ready: dict = {}
 
     def __call__(self, **arguments):
         values = tuple(arguments[name] for name in self._names)
@@ -345,7 +346,8 @@ class _Launcher:
         ready = self._ready.get(kinds) if DIRECT_LAUNCH else None
         if ready is None:
             result = self.kernel(**arguments)
-            self._ready.setdefault(kinds, self._prepare(values) if _DIRECT_TAICHI else False)
+            if kinds not in self._ready:
+                self._ready[kinds] = self._prepare(values) if _DIRECT_TAICHI else False
             return result
         if ready is False:
             return self.kernel(**arguments)

@@ -1,3 +1,4 @@
+import functools
 from pathlib import Path
 
 import pytest
@@ -17,3 +18,13 @@ def shared_file(*parts: str) -> Path:
     if not path.exists():
         pytest.skip(f"{path} not present (large third-party data lives in ../shared/data)")
     return path
+
+
+def recorded(kernel, name: str, calls: list):
+    """``kernel`` (called by keywords) with each call's ``name`` appended to ``calls`` before it runs; its
+    attributes kept (the engine's launcher reads the Taichi kernel's)."""
+    @functools.wraps(kernel)
+    def call(**arguments):
+        calls.append(name)
+        return kernel(**arguments)
+    return call

@@ -1,5 +1,4 @@
 """The engine's windowed node layers against full-grid layers, cell for cell, through map changes."""
-import functools
 import gc
 import math
 from pathlib import Path
@@ -7,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import recorded
 from tdp import engine as engine_module
 from tdp.engine import LANES, Engine
 
@@ -297,15 +297,6 @@ def test_warm_up_compiles_every_kernel_a_field_then_launches():
     assert [len(kernel.kernel._primal.compiled_kernels) for kernel in kernels] == compiled
 
 
-def _counting(kernel, calls: list):
-    """``kernel``, each call recorded in ``calls``."""
-    @functools.wraps(kernel)
-    def counted(**arguments):
-        calls.append(kernel.__name__)
-        return kernel(**arguments)
-    return counted
-
-
 def _every_kind_of_launch(nodes):
     """A run through every kind of launch an engine makes - a search, paints, a mend, rounds focused and cut short,
     iterations parallel and serial (a returned count), samples, traces, cost edits, a goal move - and what each
@@ -343,6 +334,6 @@ def test_direct_launches_give_what_taichis_calls_give(monkeypatch, nodes):
     calls = []
     for lanes in (0, LANES):
         for launcher in engine_module._kernels_for(lanes, 16, False, True).all:
-            monkeypatch.setattr(launcher, "kernel", _counting(launcher.kernel, calls))
+            monkeypatch.setattr(launcher, "kernel", recorded(launcher.kernel, launcher.__name__, calls))
     _every_kind_of_launch(nodes)
     assert calls == []

@@ -7,6 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import tdp
+from conftest import recorded
 from tdp import engine as engine_module
 from tdp import stencil
 from tdp.engine import Engine
@@ -227,9 +228,7 @@ def count_launches(monkeypatch, engine: Engine, names: tuple) -> list:
     """The goal layer's launches of the kernels ``names``, in order, from now on."""
     launches, kernels = [], engine._goal.kernels
     for name in names:
-        kernel = getattr(kernels, name)
-        monkeypatch.setattr(kernels, name,
-                            lambda kernel=kernel, name=name, **arguments: (launches.append(name), kernel(**arguments)))
+        monkeypatch.setattr(kernels, name, recorded(getattr(kernels, name), name, launches))
     return launches
 
 
