@@ -147,6 +147,9 @@ MAX_SIDE = 1 << 15
 IDLE_ENTRIES = 16
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
 REBASE_AT = 1 << 29
+#: Moves a successor's trace follows on from the cell asked about (``Engine.focus_successor``): a robot stepping
+#: along its route finds the next cells' successors read; the trace costs its launch whatever its length.
+ROUTE_AHEAD = 32
 
 # Launch parameters and results of the kernels that take several: named tuples on the host, one int32 numpy array a
 # launch in Taichi (``_launch``: the parameters, then room for the results), which kernels index by the slots below.
@@ -1883,8 +1886,9 @@ class _LayerArrays:
         self.pending = False
         self.cut_short = False  # the last converge stopped at max_rounds or max_sweeps (not its fixed point or focus)
         self.swept = 0  # sweeps of tiles the last converge made on the calling thread
-        # (focus, index of its successor move) read by the last converge, until anything changes the values
-        self.focus_move: tuple[tuple[int, int], int] | None = None
+        # the successor moves read since anything last changed the values: padded cell -> index of its move (-1: none),
+        # the last focused converge's at its focus (read in its last launch) and the cells traced since (``trace``)
+        self.successors: dict[tuple[int, int], int] = {}
         # the values are the initial state (the cap, the source aside: edits keep it), for a search (``_search``)
         self.fresh = False
         self.links = None  # the search's buckets (``_search_rules``), made at the first search
@@ -1949,7 +1953,7 @@ class _LayerArrays:
         """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
         the old one must rise)."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
-        self.focus_move = self.edits = None
+        self.successors, self.edits = {}, None
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""
@@ -1990,7 +1994,7 @@ class _LayerArrays:
         else:
             self._paint_now(cells, penalties)
         self.woken = self.tick
-        self._idle_sample = self.focus_move = None
+        self._idle_sample, self.successors = None, {}
         if self.edits is not None:
             self.edits.append((cells, penalties))
 
@@ -2017,7 +2021,7 @@ class _LayerArrays:
         self.woken = self.tick
         self.pending = False
         self.fresh = True
-        self._idle_sample = self.focus_move = self.edits = None
+        self._idle_sample, self.successors, self.edits = None, {}, None
         self.reset_s = time.perf_counter() - began
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
@@ -2031,7 +2035,7 @@ class _LayerArrays:
         out = np.empty((max_steps + 1, 2), np.int32)  # row 0: the start, then the number of steps
         out[0] = start[0] - origin[0], start[1] - origin[1]
         self.kernels.trace(values=self.values, pen=self.pen, header=self.header, cap=self.cap, index=index, out=out)
-        return [(int(r + origin[0]), int(c + origin[1])) for r, c in out[1:1 + out[0, 0]]]
+        return list(map(tuple, (out[1:1 + out[0, 0]] + origin).tolist()))
 
     def warm_up(self) -> None:
         """Compile every kernel of this kind (:attr:`_Kernels.all`) by launching it on a scratch layer of one cell
@@ -2098,7 +2102,7 @@ class _Layers(_LayerArrays):
         of an idle tick on nav2's warehouse map; 0.03 ms or more through :class:`_Launcher`)."""
         if self.pending:  # iterations start from a fixed point: a cell below its relaxation would rise slowly
             self.converge(None)
-        self.focus_move, self.listed, self.fresh = None, False, False  # iterations stamp tiles without lists
+        self.successors, self.listed, self.fresh = {}, False, False  # iterations stamp tiles without lists
         if not self.mirrored:  # settling and resets write the values' buffer only
             self.dst.copy_from(self.src)
             self.mirrored = True
@@ -2202,8 +2206,8 @@ class _Layers(_LayerArrays):
         if held:  # no launch ran (``max_rounds`` 0)
             self._paint_now(*held)
         self.cut_short = state["cut"] or not finished
-        # the focus's successor move as the last launch left it (None: unknown, a parallel round came last)
-        self.focus_move = None if focus is None or self.cut_short else (focus, state["move"])
+        move = state["move"]  # the focus's successor move as the last launch left it (None: a parallel round came last)
+        self.successors = {} if focus is None or move is None or self.cut_short else {focus: move}
         self.mirrored = False
         if finished and not state["focused"] and not state["cut"]:
             self.deactivate_all()
@@ -2240,7 +2244,7 @@ class _Layers(_LayerArrays):
         self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
         self.swept = 0
         self.pending, self.woken = frontier, self.tick
-        self._idle_sample = self.focus_move = None
+        self._idle_sample, self.successors = None, {}
         self.edits = None if frontier else []
 
     def _make_links(self) -> None:
@@ -2402,6 +2406,7 @@ class Engine:
         self.goal = (int(goal[0]), int(goal[1]))
         self.goal_cap = float(goal_cap)
         self._moves = stencil.moves(self.neighbourhood, self.corner_cutting)  # the kernels' move order
+        self._move_index = {(m.dr, m.dc): index for index, m in enumerate(self._moves)}
         self.node_cap = float(node_cap)
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
@@ -2517,19 +2522,28 @@ class Engine:
         return self._goal.converged_by
 
     def focus_successor(self, focus: tuple[int, int]) -> tuple[int, int] | None:
-        """The goal layer's successor at ``focus``: as the last converge's last launch read it, when that converge
-        was focused there, ran its last launch on the calling thread, and nothing changed the values since (a trace
-        is a launch more: 0.03 ms); else traced now (:meth:`trace`). None at the goal or where no move leads
-        down."""
-        read = self._goal.focus_move
-        if read is None or read[0] != (focus[0] + PAD, focus[1] + PAD):
-            step = self.trace(0, focus, 1)
-            return step[0] if step else None
-        move = read[1]
+        """The goal layer's successor at ``focus``, read once since anything last changed the values: by the last
+        converge's last launch, when that converge was focused there; else traced now, ROUTE_AHEAD moves on from
+        ``focus`` (a trace is a launch: 0.03 ms, where a robot stepping along its route then reads the next cells'
+        successors in microseconds). None at the goal or where no move leads down."""
+        padded = (focus[0] + PAD, focus[1] + PAD)
+        known = self._goal.successors
+        if padded not in known:
+            self._trace_ahead(focus, known)
+        move = known[padded]
         if move < 0:
             return None
         m = self._moves[move]
         return focus[0] + m.dr, focus[1] + m.dc
+
+    def _trace_ahead(self, start: tuple[int, int], known: dict[tuple[int, int], int]) -> None:
+        """Add the goal layer's successor moves along the route from ``start`` (ROUTE_AHEAD moves at most) to
+        ``known`` (padded cell -> move index; -1 where the route ends: the goal, or no move leads down)."""
+        route = [start, *self.trace(0, start, ROUTE_AHEAD)]
+        for (r, c), (u, v) in zip(route, route[1:]):
+            known[r + PAD, c + PAD] = self._move_index[u - r, v - c]
+        if len(route) <= ROUTE_AHEAD:
+            known[route[-1][0] + PAD, route[-1][1] + PAD] = -1
 
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:

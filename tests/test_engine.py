@@ -5,6 +5,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from conftest import recorded
 from tdp import engine as engine_module
@@ -337,3 +339,63 @@ def test_direct_launches_give_what_taichis_calls_give(monkeypatch, nodes):
             monkeypatch.setattr(launcher, "kernel", recorded(launcher.kernel, launcher.__name__, calls))
     _every_kind_of_launch(nodes)
     assert calls == []
+
+
+_SHAPE = (13, 17)
+_CELL = st.tuples(st.integers(0, _SHAPE[0] - 1), st.integers(0, _SHAPE[1] - 1))
+_OPERATION = st.one_of(
+    st.tuples(st.just("edit"), st.lists(_CELL, min_size=1, max_size=6), st.booleans()),
+    st.tuples(st.just("cost"), st.lists(_CELL, min_size=1, max_size=4), st.integers(1, 9)),
+    st.tuples(st.just("converge"), st.one_of(st.none(), _CELL), st.sampled_from([0, 1, 3])),
+    st.tuples(st.just("step"), st.integers(1, 3), st.none()),
+    st.tuples(st.just("goal"), _CELL, st.none()),
+    st.tuples(st.just("reset"), st.none(), st.none()))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 2**16), st.sampled_from([(16, False), (8, True), (4, False)]),
+       st.lists(st.tuples(_OPERATION, st.lists(_CELL, max_size=3)), min_size=1, max_size=12))
+def test_focus_successors_read_once_are_what_a_trace_reads_now(seed, stencil_spec, operations):
+    """focus_successor keeps the successors it has read (the focused converge's, the routes traced ahead) until the
+    values change: through edits, cost changes, converges (focused, cut short, whole), iterations, goal moves and
+    resets, every cell it is asked about - walking along the route from it, as a robot does - gets what a trace
+    from that cell reads now."""
+    neighbourhood, corner_cutting = stencil_spec
+    rng = np.random.default_rng(seed)
+    occupied = random_map(*_SHAPE, 0.25, seed)
+    engine = Engine(occupied, (0, 0), neighbourhood=neighbourhood, corner_cutting=corner_cutting,
+                    cost=rng.integers(1, 4, _SHAPE).astype(np.float32))
+    engine.converge()
+    for (kind, first, second), asked in operations:
+        if kind == "edit":
+            engine.set_cells(np.array(first), np.full(len(first), second))
+        elif kind == "cost":
+            engine.set_costs(np.array(first), second)
+        elif kind == "converge":
+            engine.converge(focus=first, max_sweeps=second)
+        elif kind == "step":
+            engine.step(first)
+        elif kind == "goal" and not engine.occupied[first]:
+            engine.set_goal(first)
+        elif kind == "reset":
+            engine.reset()
+        for cell in [first] * (kind == "converge" and first is not None) + asked:
+            for _ in range(4):  # along the route: the cells after the first come from the route traced ahead
+                traced = engine.trace(0, cell, 1)
+                successor = engine.focus_successor(cell)
+                assert successor == (traced[0] if traced else None), (kind, cell)
+                if successor is None:
+                    break
+                cell = successor
+
+
+def test_iterations_drop_the_successors_read_before_them():
+    """The goal sealed in, a successor read, then iterations raising the values round the seal: the successor read
+    again is the new one (the iterations dropped the one kept)."""
+    engine = Engine(np.zeros((9, 9), bool), (0, 0))
+    engine.converge()
+    engine.set_cells(np.array([(1, 1), (1, 0), (0, 1)]), True)
+    assert engine.focus_successor((4, 4)) == (3, 3)
+    engine.step(2)
+    assert engine.trace(0, (4, 4), 1) == [(3, 4)]
+    assert engine.focus_successor((4, 4)) == (3, 4)
