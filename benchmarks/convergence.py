@@ -6,7 +6,9 @@ Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512²
 with goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells
 wide (``tdp.random_worlds.maze``), goals at a corner, the centre and a random free cell; the MovingAI maps in
 ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's world, nav2's
-1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. The 16-neighbour graph is built once and
+1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil (16
+neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner goal,
+turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
 timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are timed in turn,
 warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the solve takes
 under 5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm medians, where installed
@@ -55,6 +57,12 @@ DENSE, QUICK_DENSE = [(512, 0.3), (1024, 0.3), (512, 0.4)], [(64, 0.3)]
 MAZES, QUICK_MAZES = [(512, 1), (512, 2), (512, 4)], [(64, 1)]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
+#: Every case runs on the default stencil (16 neighbours, no corner cutting); these maps run again on each of
+#: STENCILS, (neighbourhood, corner_cutting) - most ROS costmaps are planned on 8 neighbours, grids of rooms on 4.
+DEFAULT_STENCIL = (16, False)
+STENCILS = [(8, False), (8, True), (4, False)]
+STENCIL_MAPS = ["random 512² centre", "maze 512² 1-cell corner", "turtlebot3_world #1"]
+QUICK_STENCIL_MAPS = ["random 64² centre"]
 LARGE = 65536  # maps from this size on get the repair cases (4096 with --quick)
 CONVERGE_LARGE = 32768  # maps from this size on count for the from-scratch converge's worst-case target
 FAST_S, FAST_REPEATS = 0.005, 5  # a reference solve under 5 ms gets 5 times the repeats: its timings are noisier
@@ -138,8 +146,12 @@ def largest_free_region(occupied: np.ndarray) -> np.ndarray:
     return np.argwhere(labels == np.argmax(np.bincount(labels.ravel())[1:]) + 1)
 
 
-def field_on(occupied: np.ndarray, goal) -> tdp.DistanceField:
-    return tdp.DistanceField(tdp.GridMap(occupied), goal)
+def field_on(occupied: np.ndarray, goal, stencil: tuple[int, bool] = DEFAULT_STENCIL) -> tdp.DistanceField:
+    return tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=stencil[0], corner_cutting=stencil[1])
+
+
+def stencil_name(stencil: tuple[int, bool]) -> str:
+    return f"{stencil[0]} neighbours" + (", corners cut" if stencil[1] else "")
 
 
 def from_scratch(field: tdp.DistanceField) -> None:
@@ -161,37 +173,42 @@ def fmm_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
         return None
 
 
-#: tcod's edge map: the cost of each of the 16 moves (integers: lengths x 1000) at its offset from the centre.
-TCOD_EDGES = np.array([[round(1000 * math.hypot(dr, dc)) if (abs(dr), abs(dc)) in {(0, 1), (1, 0), (1, 1), (1, 2),
-                                                                                   (2, 1)} else 0
-                        for dc in range(-2, 3)] for dr in range(-2, 3)], np.int32)
+#: The moves (|dr|, |dc|) of each neighbourhood, for tcod's edge map.
+TCOD_MOVES = {4: {(0, 1), (1, 0)}, 8: {(0, 1), (1, 0), (1, 1)}, 16: {(0, 1), (1, 0), (1, 1), (1, 2), (2, 1)}}
 
 
-def tcod_seconds(occupied: np.ndarray, goal, repeats: int) -> float | None:
-    """tcod's ``dijkstra2d`` over the 16-neighbour edge map from the goal (its distance array set afresh each time,
-    as a converge from scratch starts afresh), or None when tcod is absent."""
+def tcod_edges(neighbourhood: int) -> np.ndarray:
+    """tcod's edge map: the cost of each move (integers: lengths x 1000) at its offset from the centre."""
+    return np.array([[round(1000 * math.hypot(dr, dc)) if (abs(dr), abs(dc)) in TCOD_MOVES[neighbourhood] else 0
+                      for dc in range(-2, 3)] for dr in range(-2, 3)], np.int32)
+
+
+def tcod_seconds(occupied: np.ndarray, goal, repeats: int, neighbourhood: int = 16) -> float | None:
+    """tcod's ``dijkstra2d`` over the neighbourhood's edge map from the goal (its distance array set afresh each
+    time, as a converge from scratch starts afresh), or None when tcod is absent."""
     if tcod is None:
         return None
-    cost = (~occupied).astype(np.int32)
+    cost, edges = (~occupied).astype(np.int32), tcod_edges(neighbourhood)
 
     def solve():
         distance = np.full(occupied.shape, np.iinfo(np.int32).max, np.int32)
         distance[goal] = 0
-        tcod.path.dijkstra2d(distance, cost, edge_map=TCOD_EDGES, out=distance)
+        tcod.path.dijkstra2d(distance, cost, edge_map=edges, out=distance)
 
     return median_time(solve, repeats)
 
 
-def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: int) -> dict:
+def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: int,
+            stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
     rows, cols = occupied.shape
     began = time.perf_counter()
-    graph = grid_graph(occupied).T.tocsr()  # transposed: distances *to* the goal
+    graph = grid_graph(occupied, *stencil).T.tocsr()  # transposed: distances *to* the goal
     build_s = time.perf_counter() - began
     source = goal[0] * cols + goal[1]
     began = time.perf_counter()
     reference = dijkstra(graph, indices=source).reshape(rows, cols)
     repeats *= FAST_REPEATS if time.perf_counter() - began < FAST_S else 1
-    field = field_on(occupied, goal)
+    field = field_on(occupied, goal, stencil)
     rounds = field.converge()
     converge_s, dijkstra_s, ratio = paired_times(lambda: from_scratch(field), lambda: dijkstra(graph, indices=source),
                                                  repeats)
@@ -199,8 +216,9 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: i
     finite = np.isfinite(reference)
     exact = bool(np.array_equal(np.isfinite(ours), finite)) and bool(
         np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
-    fmm_s, tcod_s = fmm_seconds(occupied, goal, repeats), tcod_seconds(occupied, goal, repeats)
-    result = {"map": name, "cells": rows * cols, "build_ms": build_s * 1e3, "dijkstra_ms": dijkstra_s * 1e3,
+    fmm_s, tcod_s = fmm_seconds(occupied, goal, repeats), tcod_seconds(occupied, goal, repeats, stencil[0])
+    result = {"map": name, "stencil": list(stencil), "cells": rows * cols, "build_ms": build_s * 1e3,
+              "dijkstra_ms": dijkstra_s * 1e3,
               "converge_ms": converge_s * 1e3, "rounds": rounds, "ratio": ratio, "equal": exact,
               "fmm_ms": None if fmm_s is None else fmm_s * 1e3,
               "fmm_ratio": None if fmm_s is None else converge_s / fmm_s,
@@ -208,7 +226,7 @@ def measure(name: str, occupied: np.ndarray, goal, repeats: int, repair_cells: i
               "tcod_ratio": None if tcod_s is None else converge_s / tcod_s}
     if rows * cols >= repair_cells:
         pairs = min(max(repeats, math.ceil(REPAIR_PAIRS_S / converge_s)), MAX_REPAIR_PAIRS)
-        result["repairs"] = [measure_repair(field, kind, reference, pairs) for kind in REPAIRS]
+        result["repairs"] = [measure_repair(field, kind, reference, pairs, stencil) for kind in REPAIRS]
     return result
 
 
@@ -267,7 +285,8 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
     return (lambda: field.set_occupied(cells)), (lambda: field.set_occupied(cells, False))
 
 
-def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int) -> dict:
+def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int,
+                   stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
     """An edit, then converge(), from the converged field, against a fresh field's from-scratch converge() on the
     edited map, the two timed in turn; the ratio - of the edit and the converge together, and of the converge
     alone - is the median of each pair's (the VM's speed drifts: pairing keeps it out of the ratio). The field is
@@ -275,7 +294,7 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
     before = field.occupied.copy()
     apply, undo = repair_edit(field, kind, reference)
     apply()
-    fresh = field_on(field.occupied, field.goal)
+    fresh = field_on(field.occupied, field.goal, stencil)
     undo()
     field.converge()
     start = field.distances().copy()
@@ -354,9 +373,9 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     args = parser.parse_args()
     if args.quick:
-        sizes, dense, mazes, maps = QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_MAPS
+        sizes, dense, mazes, maps, stencil_maps = QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_MAPS, QUICK_STENCIL_MAPS
     else:
-        sizes, dense, mazes, maps = SIZES, DENSE, MAZES, MAPS
+        sizes, dense, mazes, maps, stencil_maps = SIZES, DENSE, MAZES, MAPS, STENCIL_MAPS
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
@@ -364,9 +383,12 @@ def main() -> None:
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
         cases += ros_cases()
+    cases = [(*case, DEFAULT_STENCIL) for case in cases] + [
+        (f"{name}, {stencil_name(stencil)}", occupied, goal, stencil)
+        for name, occupied, goal in cases if name in stencil_maps for stencil in STENCILS]
     results = []
-    for name, occupied, goal in cases:
-        results.append(measure(name, occupied, goal, repeats, 4096 if args.quick else LARGE))
+    for name, occupied, goal, stencil in cases:
+        results.append(measure(name, occupied, goal, repeats, 4096 if args.quick else LARGE, stencil))
         r = results[-1]
         repairs = "".join(f", {q['kind']} {q['repair_ms']:.1f} ms ({q['ratio']:.2f}x)" for q in r.get("repairs", []))
         print(f"  {name}: converge {r['converge_ms']:.1f} ms ({r['rounds']} rounds), "
