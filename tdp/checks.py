@@ -47,6 +47,18 @@ def flag(value, name: str) -> bool:
     return bool(value)
 
 
+def flags(value, count: int, name: str) -> np.ndarray:
+    """``value`` as ``count`` bools: one flag (True or False, numpy bools included) for every cell, or a sequence or
+    array of ``count`` of them, one per cell."""
+    if isinstance(value, (bool, np.bool_)):
+        return np.full(count, bool(value))
+    array = np.asarray(value)
+    if array.dtype != bool or array.shape != (count,):
+        got = repr(value) if array.ndim == 0 else f"an array of shape {array.shape} and dtype {array.dtype}"
+        raise ValueError(f"{name} must be True, False or one of them per cell ({count} cells), got {got}")
+    return array
+
+
 def pair(value, name: str) -> tuple[int, int]:
     """``value`` as a (row, col) tuple of ints: two integers, never floats."""
     try:

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from . import stencil
+from . import checks, stencil
 from .contract import Mode, TickResult
 
 INF = math.inf
@@ -118,7 +118,7 @@ class DStarLite:
 
     def update_map(self, cells: np.ndarray, occupied) -> None:
         """Cells change state; repair the search (edges within the stencil's reach of each cell change)."""
-        occupied = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        occupied = checks.flags(occupied, len(cells), "occupied")
         self.occupied[cells[:, 0], cells[:, 1]] = occupied
         self.km += self._h(self.last, self.start)
         self.last = self.start

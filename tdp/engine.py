@@ -51,7 +51,7 @@ from taichi.lang._ndarray import Ndarray as _Ndarray  # noqa: E402
 from taichi.types import primitive_types as _primitive  # noqa: E402
 from taichi.types.ndarray_type import NdarrayType  # noqa: E402
 
-from . import stencil
+from . import checks, stencil
 from .grid import MAX_COST  # a penalty above it is an obstacle's (inf): kernels test against it, not inf
 
 #: Node layers packed per cell: 32 float32, two AVX-512 registers (measured faster than 16 and 64 at 1024²).
@@ -2362,7 +2362,7 @@ def _changed_costs(current: np.ndarray | None, cells: np.ndarray, costs) -> tupl
 def _edit(cells, occupied) -> tuple[np.ndarray, np.ndarray]:
     """Cells as kernels take them and one occupancy flag per cell."""
     cells = _cells_array(cells)
-    return cells, np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+    return cells, checks.flags(occupied, len(cells), "occupied")
 
 
 def _freed_when_dropped(array):

@@ -79,7 +79,7 @@ class Navigator:
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
         """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
-        flags = np.broadcast_to(np.asarray(occupied, bool), (len(cells),))
+        flags = checks.flags(occupied, len(cells), "occupied")
         self.moves.freed(cells, flags)
         if self.lookout:
             self.lookout.note_update(cells, flags)

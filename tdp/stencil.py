@@ -142,7 +142,8 @@ class RobotMoves:
 
     def freed(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """A map update: ``cells`` (n, 2) whose new state is ``occupied`` (bool per cell); freed cells are no walls."""
-        self.walls[cells[~occupied, 0], cells[~occupied, 1]] = False
+        freed = cells[~occupied]
+        self.walls[freed[:, 0], freed[:, 1]] = False
 
     def legal(self, occupied: np.ndarray, cell: tuple[int, int]) -> list[tuple[tuple[int, int], float]]:
         """(neighbour, length) of every stencil move from ``cell`` into a free cell, crossing only free cells."""

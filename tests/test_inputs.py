@@ -195,3 +195,15 @@ def test_a_map_wider_than_the_engine_packs_is_a_clear_error():
     wide = np.zeros((1, 32765), bool)
     with pytest.raises(ValueError, match="at most 32764 cells a side, got 1 x 32765"):
         tdp.DistanceField(tdp.GridMap(wide), (0, 0))
+
+
+@pytest.mark.parametrize("occupied", [[True, False], "yes", [0.5, 2.0], [[True, False, True]], np.ones(3, int)])
+@pytest.mark.parametrize("planner", ["exact", "accelerating"])
+def test_update_map_flags_are_true_false_or_one_bool_per_cell(planner, occupied):
+    """update_map took ``occupied`` through numpy's bool cast and broadcast: a string or floats went in silently
+    as True, a wrong length raised numpy's broadcasting error; now either is a ValueError naming ``occupied``."""
+    navigator = tdp.make_planner(GRID, (0, 0), (9, 9), tdp.NavigatorConfig(planner=planner))
+    with pytest.raises(ValueError, match=r"occupied must be True, False or one of them per cell \(3 cells\)"):
+        navigator.update_map([(1, 1), (2, 2), (3, 3)], occupied)
+    navigator.update_map([(1, 1), (2, 2), (3, 3)], np.array([True, False, True]))
+    navigator.update_map([(1, 1), (2, 2), (3, 3)], False)
