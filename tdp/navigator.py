@@ -77,7 +77,11 @@ class Navigator:
         return self.engine.converge()
 
     def update_map(self, cells_or_mask, occupied: bool | np.ndarray = True) -> None:
-        """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell."""
+        """Set cells (a mask or (row, col) cells) occupied or free; ``occupied`` may give one value per cell.
+
+        Raises:
+            ValueError: a cell outside the map, or ``occupied`` not True, False or one bool per cell.
+        """
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         flags = checks.flags(occupied, len(cells), "occupied")
         self.moves.freed(cells, flags)
