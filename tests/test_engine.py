@@ -354,12 +354,13 @@ _OPERATION = st.one_of(
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.integers(0, 2**16), st.sampled_from([(16, False), (8, True), (4, False)]),
-       st.lists(st.tuples(_OPERATION, st.lists(_CELL, max_size=3)), min_size=1, max_size=12))
-def test_focus_successors_read_once_are_what_a_trace_reads_now(seed, stencil_spec, operations):
+       st.lists(st.tuples(_OPERATION, st.lists(_CELL, max_size=3)), min_size=1, max_size=12),
+       st.lists(_CELL, min_size=1, max_size=3))
+def test_focus_successors_read_once_are_what_a_trace_reads_now(seed, stencil_spec, operations, watched):
     """focus_successor keeps the successors it has read (the focused converge's, the routes traced ahead) until the
     values change: through edits, cost changes, converges (focused, cut short, whole), iterations, goal moves and
-    resets, every cell it is asked about - walking along the route from it, as a robot does - gets what a trace
-    from that cell reads now."""
+    resets, every cell it is asked about - walking along the route from it, as a robot does, and the ``watched``
+    cells after every operation, whose routes it has read before - gets what a trace from that cell reads now."""
     neighbourhood, corner_cutting = stencil_spec
     rng = np.random.default_rng(seed)
     occupied = random_map(*_SHAPE, 0.25, seed)
@@ -379,7 +380,7 @@ def test_focus_successors_read_once_are_what_a_trace_reads_now(seed, stencil_spe
             engine.set_goal(first)
         elif kind == "reset":
             engine.reset()
-        for cell in [first] * (kind == "converge" and first is not None) + asked:
+        for cell in [first] * (kind == "converge" and first is not None) + asked + watched:
             for _ in range(4):  # along the route: the cells after the first come from the route traced ahead
                 traced = engine.trace(0, cell, 1)
                 successor = engine.focus_successor(cell)
