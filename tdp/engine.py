@@ -150,6 +150,9 @@ REBASE_AT = 1 << 29
 #: Moves a successor's trace follows on from the cell asked about (``Engine.focus_successor``): a robot stepping
 #: along its route finds the next cells' successors read; the trace costs its launch whatever its length.
 ROUTE_AHEAD = 32
+#: Successors kept at most (``Engine.focus_successor``): asked about every cell of a large map with nothing changing,
+#: the kept moves start again from none rather than grow with the map.
+SUCCESSORS_KEPT = 1 << 16
 
 # Launch parameters and results of the kernels that take several: named tuples on the host, one int32 numpy array a
 # launch in Taichi (``_launch``: the parameters, then room for the results), which kernels index by the slots below.
@@ -2538,7 +2541,10 @@ class Engine:
 
     def _trace_ahead(self, start: tuple[int, int], known: dict[tuple[int, int], int]) -> None:
         """Add the goal layer's successor moves along the route from ``start`` (ROUTE_AHEAD moves at most) to
-        ``known`` (padded cell -> move index; -1 where the route ends: the goal, or no move leads down)."""
+        ``known`` (padded cell -> move index; -1 where the route ends: the goal, or no move leads down), emptied
+        first once it holds SUCCESSORS_KEPT."""
+        if len(known) >= SUCCESSORS_KEPT:
+            known.clear()
         route = [start, *self.trace(0, start, ROUTE_AHEAD)]
         for (r, c), (u, v) in zip(route, route[1:]):
             known[r + PAD, c + PAD] = self._move_index[u - r, v - c]

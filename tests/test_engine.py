@@ -400,3 +400,17 @@ def test_iterations_drop_the_successors_read_before_them():
     engine.step(2)
     assert engine.trace(0, (4, 4), 1) == [(3, 4)]
     assert engine.focus_successor((4, 4)) == (3, 4)
+
+
+def test_the_successors_kept_stay_bounded(monkeypatch):
+    """Asked about every cell of a map with nothing changing, focus_successor keeps at most SUCCESSORS_KEPT moves
+    (and a route's worth more), each still what a trace reads."""
+    monkeypatch.setattr(engine_module, "SUCCESSORS_KEPT", 40)
+    occupied = random_map(20, 30, 0.2, 4)
+    engine = Engine(occupied, (0, 0))
+    engine.converge()
+    for cell in np.argwhere(~occupied):
+        cell = tuple(int(v) for v in cell)
+        traced = engine.trace(0, cell, 1)
+        assert engine.focus_successor(cell) == (traced[0] if traced else None)
+        assert len(engine._goal.successors) <= 40 + engine_module.ROUTE_AHEAD + 1
