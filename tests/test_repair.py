@@ -443,3 +443,27 @@ def test_the_probe_counts_the_cells_the_source_still_reaches(monkeypatch, corner
         assert outcomes[-1].reached in (-1, reachable_by_the_stencil(engine.occupied, goal, corner_cutting))
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
     assert outcomes[0].reached >= 0  # the ring raised enough to start the probe
+
+
+@pytest.mark.parametrize("focused", [False, True])
+def test_a_goal_move_restarts_with_the_values_filled_alone(monkeypatch, focused):
+    """A goal move's converge searches from the initial state, whose reset fills the values only: the search sets
+    the source and its hand-over every stamp and key, so the seed is not launched - and the field is a fresh
+    engine's, before and after edits that follow, through a repair that gives up for a restart too (a wall that
+    seals off most of the map)."""
+    occupied = np.random.default_rng(9).random((40, 50)) < 0.2
+    occupied[5, 5] = occupied[30, 40] = occupied[0, 0] = False
+    engine = Engine(occupied, (5, 5))
+    engine.converge()
+    launches = count_launches(monkeypatch, engine, ("seed", "search"))
+    engine.set_goal((30, 40))
+    engine.converge(focus=(0, 0) if focused else None)
+    assert launches == ["search"]
+    engine.converge()
+    wall = np.array([(r, 36) for r in range(40)])  # the goal's side keeps 13 columns of 50
+    engine.set_cells(wall, np.ones(len(wall), bool))
+    engine.converge()
+    assert engine.converged_by() == "search" and "seed" not in launches
+    fresh = Engine(engine.occupied, (30, 40))
+    fresh.converge()
+    np.testing.assert_array_equal(engine.goal_distances(), fresh.goal_distances())
