@@ -2028,7 +2028,8 @@ class _LayerArrays:
         self.pending = False
         self.fresh = True
         self._idle_sample, self.successors, self.edits = None, {}, None
-        self.reset_s = time.perf_counter() - began
+        if tiles:  # a whole reset's time prices a restart (``_fills``): the leaner one would price it below its cost
+            self.reset_s = time.perf_counter() - began
 
     def sample(self, cells: np.ndarray, out: np.ndarray) -> None:
         """Every layer of this kind at ``cells`` into out[0]."""
