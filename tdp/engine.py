@@ -2298,8 +2298,9 @@ class _Layers(_LayerArrays):
         return outcome.buckets
 
     def _fills(self) -> int:
-        """A reset's price in cells a search takes: the last reset's time over the last search's per cell, at most
-        one per FILLS_PER_CELL cells of the layer (a first reset's time may hold compiling)."""
+        """A reset's price in cells a search takes: the last whole reset's time (:meth:`reset`) over the last
+        search's per cell, at most one per FILLS_PER_CELL cells of the layer (a first reset's time may hold
+        compiling)."""
         most = self.padded_cells // FILLS_PER_CELL
         if self.reset_s is None or self.cell_s is None:
             return most
