@@ -2292,8 +2292,7 @@ class _Layers(_LayerArrays):
                           run=run)
         outcome = _outcome(_MendResult, run)
         if outcome.gave_up:  # most of the layer cut off or changed: a search from the source costs less
-            self.reset(tiles=False)
-            return self._search(focus)
+            return self.restart(None, focus)
         self._searched(bool(outcome.frontier), "mend")
         return outcome.buckets
 
@@ -2332,8 +2331,7 @@ class _Layers(_LayerArrays):
                 self.swept = swept
                 return rounds
             if spent_s >= allowance_s:
-                self.reset(tiles=False)
-                return rounds + self._search(focus)
+                return rounds + self.restart(None, focus)
             sweeps = sweeps_fitting(allowance_s - spent_s, took_s / max(self.swept, 1), _FEWEST_SWEEPS,
                                     SLICE_GROWTH * sweeps)
 
