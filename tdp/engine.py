@@ -2451,6 +2451,8 @@ class Engine:
                 grids[weighted][PAD:-PAD, PAD:-PAD] = self._penalties(layers, self.occupied, slice(None))
             layers.gather_penalties(grids[weighted])
         self.reset()
+        self._goal.reset()  # again: the first compiled its launches and touched its arrays first, and a whole reset's
+        # time prices the goal layer's restarts (``_Layers._fills``)
 
     # -- state -------------------------------------------------------------------------------------------------
     def reset(self) -> None:
