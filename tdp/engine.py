@@ -116,16 +116,31 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 RESTART_SHARE = 0.5
 #: A mend (``_LayerArrays._mend``) gives way to a restart once its work passes this share of a restart's price, the
 #: cells the last search took and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a
-#: restart, whatever the cut), or of the cells the source still reaches and the fills once its probe has counted
-#: them. Raising a cell is priced at RAISE_COST cells a search takes, lowering one at a cell: measured on the 2-core
-#: VM a raise with its seed's relaxation costs 50-75 ns (mazes the cheapest), a cell a search takes 50-65 ns - the
-#: dearer price gives way sooner where a raise runs away (a box sealing off half a maze).
+#: restart, whatever the cut). Raising a cell is priced at RAISE_COST cells a search takes, lowering one at a cell:
+#: measured on the 2-core VM a raise with its seed's relaxation costs 50-75 ns (mazes the cheapest), a cell a search
+#: takes 50-65 ns - the dearer price gives way sooner where a raise runs away (a box sealing off half a maze).
 MEND_SHARE = 0.4
 RAISE_COST = 2
 #: The probe (``_flood_rules``) counts up to this many cells per cell raised: enough to count a pocket the goal is
 #: sealed in before the raise has spent much more than a restart costs, 3-5 % of a large mend's time where it counts
-#: in vain (measured on the 2-core VM; two a cell raised: 10-15 %).
+#: in vain (measured on the 2-core VM; two a cell raised: 10-15 %). It runs only where the mend's first look at the
+#: cut (``_cut_rules``) left parts apart.
 PROBE_SHARE = 1
+#: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
+#: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
+CUT_PARTS = 4096
+#: Cells ``cut_off`` looks at for the price of a cell a search takes (a look steps by four moves, a search's cell by
+#: sixteen; measured on the 2-core VM a look costs 13-25 ns alone, 25-50 ns with the parts' merges and marks cleared).
+CUT_LOOKS = 2
+#: The share of a reset's fills (in cells a search takes) that ``cut_off`` may spend: enough to tell that a box or a
+#: wall cut nothing - its sides meet round it within a few rings of cells - and to find a pocket or a goal sealed in
+#: of a few hundred cells, little against the raise it spares where it finds nothing (the probe then starts once the
+#: raise has spent MEND_SHARE of the fills). A/B on the 2-core VM: 0.25 made boxes and walls 5-6 % faster (no probe
+#: counts in vain after it) and a goal sealed in a pocket of a few hundred cells 10-25 %, and cost a pocket of
+#: thousands 1-5 % (it looks in vain); 1 found pockets of a thousand or two but cost larger ones 10-50 %.
+CUT_SHARE = 0.25
+_HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
+_PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
 #: A reset's price in cells a search takes, at most: a search's cell per this many cells of the layer (it fills the
 #: layer's arrays; a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole
 #: map). The last reset's measured time gives it, where less (a large map's fills run at memory speed).
@@ -226,8 +241,8 @@ class _SearchResult(NamedTuple):
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
     stamped for, its budget (cells a search takes: past it, the mend gives way to a restart), a restart's price and
-    a reset's fills in those units, the cells its probe may count per cell raised, and whether to mend (0: a launch
-    that only compiles)."""
+    a reset's fills in those units, the cells its first look at the cut may take (``_cut_rules``), the cells its
+    probe may count per cell raised, and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -235,14 +250,16 @@ class _MendRun(NamedTuple):
     budget: int
     restart: int
     fills: int
+    looks: int
     probe_share: int
     go: int
 
 
 class _MendResult(NamedTuple):
     """What ``mend`` hands back: the buckets emptied, the cells left to lower (a focused mend's frontier), the cells
-    raised to the cap, the cells the source reaches (-1: not counted), its work in cells a search takes, and
-    whether it gave up for a restart (its work passed the budget, or the budget fell below it)."""
+    raised to the cap, the cells the source still reaches where the edits sealed it in (-1: they did not), its work
+    in cells a search takes, and whether it gave up for a restart (the source sealed in, or its work passed the
+    budget)."""
 
     buckets: int
     frontier: int
@@ -1176,6 +1193,109 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                            clear=clear)
 
 
+def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """A mend's first look at its edits (``_Layers._mend``): ``cut_off`` tells whether the cells they blocked cut the
+    free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell: every
+    other move's crossed cells must be free and make a way of those moves from one end to the other (ARCHITECTURE
+    §4), so they join the same cells. Row 2 of a mend's ``trail`` marks the cells looked at (their part + 1), row 1
+    queues them (and logs them: nothing is taken off), row 0 holds each part's ints (``_PART_INTS``: union-find
+    parent, cells waiting, flags)."""
+    blocked = cell.blocked
+    steps = tuple(m for m in cell.moves if not m.crossed)
+
+    @ti.func
+    def at(part, field):
+        """Where ``field`` of ``part`` lies in row 0 of the trail."""
+        return part * _PART_INTS + field
+
+    @ti.func
+    def root(trail: ti.template(), part):
+        """The part that ``part`` was merged into (union-find with path halving)."""
+        while trail[0, at(part, _PARENT)] != part:
+            trail[0, at(part, _PARENT)] = trail[0, at(trail[0, at(part, _PARENT)], _PARENT)]
+            part = trail[0, at(part, _PARENT)]
+        return part
+
+    @ti.func
+    def visit(trail: ti.template(), part, c, tail, source):
+        """Mark padded cell ``c`` (row-major) as ``part``'s and queue it at ``tail``; returns the new tail."""
+        trail[2, c], trail[1, tail] = part + 1, c
+        trail[0, at(part, _WAITING)] += 1
+        if c == source:
+            trail[0, at(part, _FLAGS)] |= _HOLDS_SOURCE
+        return tail + 1
+
+    @ti.func
+    def merge(trail: ti.template(), part, other):
+        """Part ``other`` joins ``part``: its cells waiting and its flags."""
+        trail[0, at(other, _PARENT)] = part
+        trail[0, at(part, _WAITING)] += trail[0, at(other, _WAITING)]
+        trail[0, at(part, _FLAGS)] |= trail[0, at(other, _FLAGS)]
+
+    @ti.func
+    def cut_off(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
+                cells: ti.template(), penalties: ti.template(), cap, budget):
+        """Breadth-first from every free cell beside a cell the edits blocked, each a part of its own, in one queue:
+        parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it
+        joins. It stops once one part is left (every other merged into it or closed), the source's part ran dry, it
+        has looked at ``budget`` cells, or the blocked cells have more than CUT_PARTS free cells beside them. If the
+        edits left the source's part closed, the cells in it are what a restart searches (none if they blocked the
+        source); else the parts closed without the source - pockets sealed off - have their cells set to the cap at
+        once (no raise). If every part merged into one, the edits cut nothing: a way round each blocked cell joins
+        its neighbours, so a route through it has a way round too. Returns (the cells the source's closed part
+        holds, -1 if none; cells looked at; 1 if it stopped short with parts apart - the source may lie in one
+        closed - else 0)."""
+        width = values.shape[2]
+        most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
+        source = header[SOURCE_ROW] * width + header[SOURCE_COL]
+        lost = blocked(pen[0, header[SOURCE_ROW], header[SOURCE_COL]])  # no part holds it: it reaches nothing
+        live, tail, crowded = 0, 0, False
+        for k in range(cells.shape[0]):
+            if penalties[k] > MAX_COST:
+                for m in ti.static(steps):
+                    i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
+                    if trail[2, i * width + j] == 0 and not blocked(pen[0, i, j]):
+                        if live < most:
+                            trail[0, at(live, _PARENT)], trail[0, at(live, _FLAGS)] = live, 0
+                            trail[0, at(live, _WAITING)] = 0
+                            tail = visit(trail, live, i * width + j, tail, source)
+                            live += 1
+                        crowded |= live == most
+        head, sealed = 0, -1
+        while not (crowded or lost) and live > 1 and head < tail and head < budget and sealed < 0:
+            c = trail[1, head]
+            head += 1
+            part = root(trail, trail[2, c] - 1)
+            i, j = c // width, c % width
+            for m in ti.static(steps):
+                if not blocked(pen[0, i + m.dr, j + m.dc]):
+                    there = c + m.dr * width + m.dc
+                    mark = trail[2, there]
+                    if mark == 0:
+                        tail = visit(trail, part, there, tail, source)
+                    elif mark != part + 1 and root(trail, mark - 1) != part:  # two parts meet: one from here on
+                        merge(trail, part, root(trail, mark - 1))
+                        live -= 1
+            trail[0, at(part, _WAITING)] -= 1
+            if trail[0, at(part, _WAITING)] == 0:  # all it joins looked at: closed
+                trail[0, at(part, _FLAGS)] |= _CLOSED
+                live -= 1
+                if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
+                    sealed = part
+        reached = ti.select(sealed >= 0 or lost, 0, -1)
+        for k in range(tail):
+            c = trail[1, k]
+            flags = trail[0, at(root(trail, trail[2, c] - 1), _FLAGS)]
+            trail[2, c] = 0
+            if sealed >= 0:
+                reached += flags & _HOLDS_SOURCE
+            elif flags & _CLOSED:
+                values[0, c // width, c % width] = cap
+        return ti.Vector([reached, head, ti.select(crowded or live > 1, 1, 0)])
+
+    return SimpleNamespace(cut_off=cut_off)
+
+
 def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, in bursts. It steps by
     the moves that cross no cell: every other move's crossed cells must be free and make a way of those moves from
@@ -1284,7 +1404,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget, restart, fills, probe_share):
+                  trail: ti.template(), cells: ti.template(), cap, budget, restart, fills, probe_share, probing):
         """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
@@ -1321,7 +1441,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     u, v = i - m.dr, j - m.dc  # a move whose crossing is now blocked starts within reach of an edit)
                     if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
                         top = push(values, links, cap, top, u, v)
-                if reached < 0 and raised * RAISE_COST > probe_at:
+                if probing and reached < 0 and raised * RAISE_COST > probe_at:
                     probe = flood(pen, header, trail, probe, ti.max(probe[2] + 1, probe_share * raised))
                     if probe[0] == probe[1]:
                         reached = probe[2]
@@ -1590,15 +1710,17 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     raising = _raise_rules(cell)
     raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(rules).lower_cut
+    cut_off = _cut_rules(cell).cut_off
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
              trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
-        thread (``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``' ``lower_cut``; ``run``: a
-        _MendRun), the tiles then handed over to settling for round ``tick``; its results (a _MendResult) go in
-        ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them back for it). ``trail``:
-        (3, padded cells), its rows ``raise_cut``'s and ``flood``'s, all 0 in row 2."""
+        thread (``_cut_rules``' ``cut_off``, ``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``'
+        ``lower_cut``; ``run``: a _MendRun), the tiles then handed over to settling for round ``tick``; its results (a
+        _MendResult) go in ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them back
+        for it). ``trail``: (3, padded cells), its rows ``cut_off``'s and ``raise_cut``'s, all 0 in row 2. A goal
+        the edits sealed in, it gives up for a restart at once."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
@@ -1606,12 +1728,17 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 store_penalty(pen, 0, i, j, 0, penalties[k])
                 if penalties[k] > MAX_COST:
                     values[0, i, j] = cap
-            cut = raise_cut(values, pen, header, links, trail, cells, cap, run[_MEND.budget], run[_MEND.restart],
-                            run[_MEND.fills], run[_MEND.probe_share])
-            raised, budget, spent = cut[0], cut[1], cut[0] * RAISE_COST
-            run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, cut[2], spent
-            run[_MENDED.gave_up] = ti.select(spent > budget, 1, 0)
-            if spent > budget:
+            budget = run[_MEND.budget]
+            looked = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks])
+            reached, spent, raised = looked[0], looked[1] // CUT_LOOKS, 0
+            if reached < 0:
+                cut = raise_cut(values, pen, header, links, trail, cells, cap, budget - spent, run[_MEND.restart],
+                                run[_MEND.fills], run[_MEND.probe_share], looked[2])
+                raised, budget, reached = cut[0], cut[1] + spent, cut[2]
+            spent += raised * RAISE_COST
+            run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
+            run[_MENDED.gave_up] = ti.select(spent > budget or looked[0] >= 0, 1, 0)
+            if run[_MENDED.gave_up]:
                 continue
             seeds = seed_cut(values, pen, header, trail, cells, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col],
@@ -2285,8 +2412,10 @@ class _Layers(_LayerArrays):
             self.trail.fill(0)
         fills = self._fills()
         restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
-        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, int(MEND_SHARE * restart), restart, fills, PROBE_SHARE,
-                               go=1), _MendResult)
+        budget = int(MEND_SHARE * restart)
+        looks = min(budget, int(CUT_SHARE * fills)) * CUT_LOOKS
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks, PROBE_SHARE, go=1),
+                      _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
                           run=run)

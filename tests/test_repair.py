@@ -84,13 +84,15 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
 @pytest.mark.parametrize("serially, restart_share", [(True, 0.5), (False, 0.5), (True, 0.0), (True, 1e-4)])
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
-@given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans())
+@given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans(), st.sampled_from([0.0, 1e9]))
 def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, restart_share, sequence, neighbourhood,
-                                                    corner_cutting, with_nodes):
+                                                    corner_cutting, with_nodes, cut_share):
     """... also when every repair that takes more than a slice restarts instead (share 0), and when some do, in
-    the middle of a round (a tiny share)."""
+    the middle of a round (a tiny share); a mend's first look at what its edits cut off left out, or run to the
+    end (every pocket it seals found and capped before the raise)."""
     launch_rounds(monkeypatch, serially)
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
+    monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)  # a mend's look at the cut: none, or to the end
     monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1 if restart_share < 0.5 else 16)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
@@ -371,15 +373,18 @@ def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
 
 
 @pytest.mark.parametrize("corner_cutting, weighted", [(False, False), (True, False), (False, True)])
+@pytest.mark.parametrize("cut_share", [0.0, 1e9])
 def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_pocket(monkeypatch, corner_cutting,
-                                                                                       weighted):
+                                                                                       weighted, cut_share):
     """Sealing the goal in cuts every other cell off: a mend would raise them all, where a restart searches the
     pocket. The mend's probe counts the cells the source still reaches, and their price (with the reset's) caps its
     budget: with MEND_SHARE so large that raising the whole map fits the budget a whole search prices, a goal sealed
     in a pocket - or under a box - still goes to a restart, while the same ring round a far cell (the source
-    reaches most of the map) is mended, on a binary map and on one with costs. Every repair equals a fresh
+    reaches most of the map) is mended, on a binary map and on one with costs; so it does where the mend's first
+    look at the cut (``_cut_rules``) finds the pocket before anything rises. Every repair equals a fresh
     converge."""
     monkeypatch.setattr(engine_module, "MEND_SHARE", 3.0)
+    monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)
     rng = np.random.default_rng(5)
     occupied = rng.random((90, 90)) < 0.2
     goal = (45, 45)
@@ -415,34 +420,55 @@ def reachable_by_the_stencil(occupied: np.ndarray, source, corner_cutting: bool)
     return len(seen)
 
 
+def mend_outcomes(monkeypatch, engine: Engine) -> list:
+    """The results of every mend launch of ``engine``'s goal layer from now on (_MendResult), in a list."""
+    kernels, outcomes = engine._goal.kernels, []
+    mend = kernels.mend
+
+    def recorded_mend(**arguments):
+        mend(**arguments)
+        outcomes.append(engine_module._outcome(engine_module._MendResult, arguments["run"]))
+
+    monkeypatch.setattr(kernels, "mend", recorded_mend)
+    return outcomes
+
+
 @pytest.mark.parametrize("corner_cutting", [False, True])
 @pytest.mark.parametrize("density", [0.2, 0.4])
-def test_the_probe_counts_the_cells_the_source_still_reaches(monkeypatch, corner_cutting, density):
-    """The mend's probe floods by the moves that cross no cell - by rows where those are the straight ones - and
-    must count exactly the cells the whole stencil joins to the goal (a plain BFS here), sealed in or not: a ring
-    round the goal, then a box on another cell."""
-    monkeypatch.setattr(engine_module, "PROBE_SHARE", 1000)  # the first burst counts them all
+def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, corner_cutting, density):
+    """A mend first floods from the cells beside those its edits blocked, by the moves that cross no cell: sealing the
+    goal in, it counts exactly the cells the whole stencil still joins to the goal (a plain BFS here) and restarts
+    without raising a cell; sealing a pocket off elsewhere, the pocket's cells go to the cap there and then, so the
+    raise lifts only cells outside it whose value rose; a box that cuts nothing off is mended. Each repair equals a
+    fresh converge."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)  # the look is not cut short by the reset's price
     rng = np.random.default_rng(int(density * 10) + corner_cutting)
     occupied = rng.random((60, 70)) < density
     goal = (30, 35)
     occupied[goal] = False
     engine = Engine(occupied, goal, corner_cutting=corner_cutting)
     engine.converge()
-    kernels, outcomes = engine._goal.kernels, []
-    mend = kernels.mend
-
-    def counted(**arguments):
-        mend(**arguments)
-        outcomes.append(engine_module._outcome(engine_module._MendResult, arguments["run"]))
-
-    monkeypatch.setattr(kernels, "mend", counted)
-    for cells in (ring_round(occupied, goal, 5), np.array([(i, j) for i in range(40, 43) for j in range(10, 13)])):
+    outcomes = mend_outcomes(monkeypatch, engine)
+    far = farthest(engine)
+    box = np.array([(i, j) for i in range(40, 43) for j in range(10, 13)])
+    for cells, sealed in ((ring_round(occupied, goal, 5), "goal"), (ring_round(occupied, far, 6), "pocket"), (box, "")):
         cells = cells[~engine.occupied[cells[:, 0], cells[:, 1]]]
+        before = engine.goal_distances()
         engine.set_cells(cells, np.ones(len(cells), bool))
         engine.converge()
-        assert outcomes[-1].reached in (-1, reachable_by_the_stencil(engine.occupied, goal, corner_cutting))
+        after, outcome = engine.goal_distances(), outcomes[-1]
+        if sealed == "goal":
+            assert engine.converged_by() == "search" and outcome.gave_up and outcome.raised == 0
+            assert outcome.reached == reachable_by_the_stencil(engine.occupied, goal, corner_cutting)
+        else:
+            cut_off = np.isfinite(before) & np.isinf(after) & ~engine.occupied
+            assert engine.converged_by() == "mend" and outcome.reached == -1
+            assert outcome.raised <= np.count_nonzero((after > before) & ~cut_off)
+            assert cut_off[far] == (sealed == "pocket")
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
-    assert outcomes[0].reached >= 0  # the ring raised enough to start the probe
+        engine.set_cells(cells, np.zeros(len(cells), bool))
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
 
 
 @pytest.mark.parametrize("focused", [False, True])
