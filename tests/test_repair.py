@@ -433,6 +433,37 @@ def mend_outcomes(monkeypatch, engine: Engine) -> list:
     return outcomes
 
 
+@pytest.mark.parametrize("before", ["search", "read", "rounds"])
+def test_a_mend_sweeps_the_tiles_only_when_something_stamped_one(monkeypatch, before):
+    """After a search every tile is settled, so the mend that follows an edit stamps the frontier's tiles alone
+    instead of sweeping every tile (0.05 ms on a 1024² map); an edit painted early - the layer read before its
+    converge - wakes the tiles round it, and rounds of tiles leave keys behind: those mends sweep them back. Either
+    way no tile is left active, and the values are a fresh converge's."""
+    occupied = np.random.default_rng(4).random((48, 48)) < 0.2
+    occupied[1, 1] = False
+    engine = Engine(occupied, (1, 1))
+    engine.converge()
+    if before == "rounds":  # an edit repaired by rounds of tiles, to the fixed point
+        engine.set_cells(np.array([(40, 40)]), np.ones(1, bool))
+        engine.converge(max_rounds=10**6)
+    kernels, settled = engine._goal.kernels, []
+    mend = kernels.mend
+
+    def recorded_mend(**arguments):
+        settled.append(int(arguments["run"][engine_module._MEND.settled]))
+        mend(**arguments)
+
+    monkeypatch.setattr(kernels, "mend", recorded_mend)
+    box = np.array([(20 + i, 20 + j) for i in range(3) for j in range(3)])
+    engine.set_cells(box, np.ones(len(box), bool))
+    if before == "read":
+        engine.goal_distances()
+    engine.converge()
+    assert engine.converged_by() == "mend" and settled == [int(before == "search")]
+    assert not (engine._goal.stamps.to_numpy() >= engine._goal.tick).any()
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
 @pytest.mark.parametrize("corner_cutting", [False, True])
 @pytest.mark.parametrize("density", [0.2, 0.4])
 def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, corner_cutting, density):
