@@ -129,16 +129,15 @@ PROBE_SHARE = 1
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
 CUT_PARTS = 4096
-#: Cells ``cut_off`` looks at for the price of a cell a search takes (a look steps by four moves, a search's cell by
-#: sixteen; measured on the 2-core VM a look costs 13-25 ns alone, 25-50 ns with the parts' merges and marks cleared).
-CUT_LOOKS = 2
-#: The share of a reset's fills (in cells a search takes) that ``cut_off`` may spend: enough to tell that a box or a
+#: The share of a reset's fills (in cells a search takes) that ``cut_off`` may look at, a look priced as a search's
+#: cell (measured on the 2-core VM: 45-55 ns a cell looked at, the parts' merges and the marks cleared after counted,
+#: 13-25 ns as a plain breadth-first fill, against 50-65 ns a cell a search takes): enough to tell that a box or a
 #: wall cut nothing - its sides meet round it within a few rings of cells - and to find a pocket or a goal sealed in
 #: of a few hundred cells, little against the raise it spares where it finds nothing (the probe then starts once the
-#: raise has spent MEND_SHARE of the fills). A/B on the 2-core VM: 0.25 made boxes and walls 5-6 % faster (no probe
-#: counts in vain after it) and a goal sealed in a pocket of a few hundred cells 10-25 %, and cost a pocket of
-#: thousands 1-5 % (it looks in vain); 1 found pockets of a thousand or two but cost larger ones 10-50 %.
-CUT_SHARE = 0.25
+#: raise has spent MEND_SHARE of the fills). A/B on the 2-core VM: 0.5 made boxes and walls 5-6 % faster (no probe
+#: counts in vain after it) and the mend of a goal sealed in a pocket of 62-405 cells 7-32 %, and cost pockets of
+#: thousands of cells 1-12 % (it looks in vain); four times as much cost a 1024² map's pocket of 13,000 cells 1.5x.
+CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
 #: A reset's price in cells a search takes, at most: a search's cell per this many cells of the layer (it fills the
@@ -1737,7 +1736,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     values[0, i, j] = cap
             budget = run[_MEND.budget]
             looked = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks])
-            reached, spent, raised = looked[0], looked[1] // CUT_LOOKS, 0
+            reached, spent, raised = looked[0], looked[1], 0
             if reached < 0:
                 cut = raise_cut(values, pen, header, links, trail, cells, cap, budget - spent, run[_MEND.restart],
                                 run[_MEND.fills], run[_MEND.probe_share], looked[2])
@@ -2426,7 +2425,7 @@ class _Layers(_LayerArrays):
         fills = self._fills()
         restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
         budget = int(MEND_SHARE * restart)
-        looks = min(budget, int(CUT_SHARE * fills)) * CUT_LOOKS
+        looks = min(budget, int(CUT_SHARE * fills))
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks, PROBE_SHARE,
                                int(self.tiles_settled), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
