@@ -433,6 +433,32 @@ def mend_outcomes(monkeypatch, engine: Engine) -> list:
     return outcomes
 
 
+def test_an_edit_with_more_sides_than_the_look_follows_is_raised_and_mended_exactly():
+    """An edit of thousands of scattered cells has more free cells beside them than a mend's first look follows
+    (CUT_PARTS): the look is skipped, and the raise, the probe and the lowering alone repair to a fresh converge's
+    values - here with a pocket sealed off among the scattered cells."""
+    rng = np.random.default_rng(8)
+    occupied = rng.random((160, 160)) < 0.1
+    occupied[80, 80] = False
+    engine = Engine(occupied, (80, 80))
+    engine.converge()
+    scattered = np.argwhere((rng.random(occupied.shape) < 0.2) & ~occupied)
+    scattered = scattered[(scattered != (80, 80)).any(axis=1)]
+    edit = np.concatenate([scattered, ring_round(occupied, (20, 20), 6)])
+    blocked = np.zeros(occupied.shape, bool)
+    blocked[edit[:, 0], edit[:, 1]] = True
+    free = np.pad(~(occupied | blocked), 1)
+    beside = np.zeros_like(free)
+    for dr, dc in ((0, 1), (0, -1), (1, 0), (-1, 0)):
+        beside |= np.roll(np.pad(blocked, 1), (dr, dc), axis=(0, 1))
+    assert np.count_nonzero(beside & free) > engine_module.CUT_PARTS
+    engine.set_cells(edit, np.ones(len(edit), bool))
+    engine.converge()
+    assert engine.converged_by() in ("mend", "search")
+    assert np.isinf(engine.goal_distances()[20, 20])
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
 @pytest.mark.parametrize("before", ["search", "read", "rounds"])
 def test_a_mend_sweeps_the_tiles_only_when_something_stamped_one(monkeypatch, before):
     """After a search every tile is settled, so the mend that follows an edit stamps the frontier's tiles alone
