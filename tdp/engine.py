@@ -121,6 +121,12 @@ RESTART_SHARE = 0.5
 #: takes 50-65 ns - the dearer price gives way sooner where a raise runs away (a box sealing off half a maze).
 MEND_SHARE = 0.4
 RAISE_COST = 2
+#: ... and an edited cell at EDIT_COST: a mend paints it, pushes the cells within reach of it for the raise and, if
+#: it left its cell free, seeds them: 0.2-0.3 µs an edited cell measured on the 2-core VM where most hold the cap.
+#: Without that price, a goal sealed in a pocket of a hundred cells, then 7,200 cells blocked elsewhere on a 520²
+#: map cost a mend 1.5 ms where a restart (the edits painted, the pocket searched) takes 0.6 - 3.3 ms before the
+#: seeds skipped the cells round a blocked one, 25x a fresh converge.
+EDIT_COST = 4
 #: The probe (``_flood_rules``) counts up to this many cells per cell raised: enough to count a pocket the goal is
 #: sealed in before the raise has spent much more than a restart costs, 3-5 % of a large mend's time where it counts
 #: in vain (measured on the 2-core VM; two a cell raised: 10-15 %). It runs only where the mend's first look at the
@@ -140,6 +146,9 @@ CUT_PARTS = 4096
 CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
+#: Cells a search must take for its time to price a cell (``_Layers._fills``): a smaller one's time is mostly its
+#: launch and hand-over - a goal sealed in a pocket of 20 cells priced a cell at 12 µs, against 50-65 ns.
+PRICED_SEARCH = 4096
 #: A reset's price in cells a search takes, at most: a search's cell per this many cells of the layer (it fills the
 #: layer's arrays; a goal in a pocket of a few cells searches next to nothing, but its reset still fills the whole
 #: map). The last reset's measured time gives it, where less (a large map's fills run at memory speed).
@@ -1260,7 +1269,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             if penalties[k] > MAX_COST:
                 for m in ti.static(steps):
                     i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
-                    if trail[2, i * width + j] == 0 and not blocked(pen[0, i, j]):
+                    if trail[2, i * width + j] == 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
                         if live < most:
                             trail[0, at(live, _PARENT)], trail[0, at(live, _FLAGS)] = live, 0
                             trail[0, at(live, _WAITING)] = 0
@@ -1461,10 +1470,11 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
-                 cells: ti.template(), raised, cap):
+                 cells: ti.template(), penalties: ti.template(), raised, cap):
         """The seeds of a repair's lowering: each raised cell (``trail``'s first ``raised``) and each cell within
-        reach of an edit whose relaxation is below its value takes it; the seeds replace the trail (in place: no more
-        of them than cells looked at). Returns how many."""
+        reach of an edit that left its cell free (freed, or a cost set) whose relaxation is below its value takes
+        it - a cell blocked lowers nothing, and what rose through it was raised; the seeds replace the trail (in
+        place: no more of them than cells looked at). Returns how many."""
         seeds = 0
         for k in range(raised):
             c = trail[0, k]
@@ -1478,8 +1488,8 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 i, j = cells[k, 0] + PAD + da, cells[k, 1] + PAD + db
                 value = cap
-                if not blocked(pen[0, i, j]):  # the padding too: its cells' neighbours lie outside the arrays
-                    value = updated(values, pen, header, cap, 0, i, j)
+                if penalties[k] <= MAX_COST and not blocked(pen[0, i, j]):  # the padding is: its cells' neighbours
+                    value = updated(values, pen, header, cap, 0, i, j)  # lie outside the arrays
                 if value < values[0, i, j]:
                     values[0, i, j] = value
                     trail[0, seeds] = i * values.shape[2] + j
@@ -1746,7 +1756,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_MENDED.gave_up] = ti.select(spent > budget or looked[0] >= 0, 1, 0)
             if run[_MENDED.gave_up]:
                 continue
-            seeds = seed_cut(values, pen, header, trail, cells, raised, cap)
+            seeds = seed_cut(values, pen, header, trail, cells, penalties, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col],
                               budget - spent)
             run[_MENDED.spent] += found[3]
@@ -2034,7 +2044,7 @@ class _LayerArrays:
         self.edits: list[tuple[np.ndarray, np.ndarray]] | None = None
         self.restart_s: float | None = None  # seconds the last search took (``_repair``'s price of a restart)
         self.searched: int | None = None  # cells the last search to the end took (``_mend``'s price of a restart)
-        self.cell_s: float | None = None  # ... and the seconds it took per cell
+        self.cell_s: float | None = None  # ... and the seconds a cell of the last one that took PRICED_SEARCH or more
         self.reset_s: float | None = None  # seconds the last reset took
         self.converged_by = ""  # how the last converge ended: "search", "mend" or "rounds"
         # every tile settled (no stamp for the round, no key): a search or mend that left no frontier made them so,
@@ -2078,8 +2088,10 @@ class _LayerArrays:
 
     @property
     def padded_cells(self) -> int:
-        """Cells of a layer, padding included (a search's and a mend's arrays have an entry per cell)."""
-        return self.values.shape[1] * self.values.shape[2]
+        """Cells of a layer, padding included (a search's and a mend's arrays have an entry per cell); reading it
+        paints no edit held back (``paint``)."""
+        shape = self._arrays.buffers[0].shape
+        return shape[1] * shape[2]
 
     @property
     def dst(self):
@@ -2389,7 +2401,9 @@ class _Layers(_LayerArrays):
         self.restart_s = time.perf_counter() - began
         outcome = _outcome(_SearchResult, run)
         if not outcome.frontier:
-            self.searched, self.cell_s = outcome.taken, self.restart_s / max(outcome.taken, 1)
+            self.searched = outcome.taken
+        if not outcome.frontier and outcome.taken >= PRICED_SEARCH:
+            self.cell_s = self.restart_s / outcome.taken
         self._searched(bool(outcome.frontier), "search")
         return outcome.buckets
 
@@ -2414,17 +2428,20 @@ class _Layers(_LayerArrays):
         the cap cell by cell, then Dial's search lowers them and whatever the edits opened from the seeds around
         them (``_raise_rules``, ``_lower_rules``), so the work follows the cells that
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
-        is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Returns
-        the buckets emptied."""
+        is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Edits
+        whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once. Returns the
+        buckets emptied."""
+        fills = self._fills()
+        restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
+        budget = int(MEND_SHARE * restart)
+        if sum(len(cells) for cells, _ in self.edits) * EDIT_COST > budget:
+            return self.restart(None, focus)  # its reset paints the edits held back
         self.unpainted = []  # the mend paints every edit since the fixed point (one painted already: again, as it is)
         cells, penalties = _joined(self.edits)
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))
             self.trail.fill(0)
-        fills = self._fills()
-        restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
-        budget = int(MEND_SHARE * restart)
         looks = min(budget, int(CUT_SHARE * fills))
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks, PROBE_SHARE,
                                int(self.tiles_settled), go=1), _MendResult)
@@ -2438,9 +2455,8 @@ class _Layers(_LayerArrays):
         return outcome.buckets
 
     def _fills(self) -> int:
-        """A reset's price in cells a search takes: the last whole reset's time (:meth:`reset`) over the last
-        search's per cell, at most one per FILLS_PER_CELL cells of the layer (a first reset's time may hold
-        compiling)."""
+        """A reset's price in cells a search takes: the last whole reset's time (:meth:`reset`) over a search's per
+        cell (the last that took PRICED_SEARCH cells or more), at most one per FILLS_PER_CELL cells of the layer."""
         most = self.padded_cells // FILLS_PER_CELL
         if self.reset_s is None or self.cell_s is None:
             return most

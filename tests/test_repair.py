@@ -459,6 +459,30 @@ def test_an_edit_with_more_sides_than_the_look_follows_is_raised_and_mended_exac
     assert_equal_to_a_fresh_converge(engine, {})
 
 
+def test_edits_that_would_cost_a_mend_more_than_a_restart_restart_at_once(monkeypatch):
+    """With the goal sealed in a pocket, a restart searches the pocket alone, while a mend looks at every cell within
+    reach of every edited cell: hundreds of cells edited elsewhere restart without a mend launch (a mend of 2,400
+    cells cost 10x a restart on a 520² map), a few cells are mended, and both equal a fresh converge."""
+    rng = np.random.default_rng(9)
+    occupied = rng.random((120, 120)) < 0.1
+    goal = (60, 60)
+    occupied[goal] = False
+    ring = ring_round(occupied, goal, 4)
+    occupied[ring[:, 0], ring[:, 1]] = True  # the goal sealed in
+    engine = Engine(occupied, goal)
+    engine.converge()
+    launches = []
+    monkeypatch.setattr(engine._goal.kernels, "mend", recorded(engine._goal.kernels.mend, "mend", launches))
+    for share, by in ((0.05, "search"), (0.0003, "mend")):
+        cells = np.argwhere((rng.random(occupied.shape) < share) & ~engine.occupied)
+        cells = cells[np.abs(cells - goal).max(axis=1) > 6][:max(3, int(share * occupied.size))]
+        launches.clear()
+        engine.set_cells(cells, np.ones(len(cells), bool))
+        engine.converge()
+        assert engine.converged_by() == by and launches == (["mend"] if by == "mend" else [])
+        assert_equal_to_a_fresh_converge(engine, {})
+
+
 @pytest.mark.parametrize("before", ["search", "read", "rounds"])
 def test_a_mend_sweeps_the_tiles_only_when_something_stamped_one(monkeypatch, before):
     """After a search every tile is settled, so the mend that follows an edit stamps the frontier's tiles alone
