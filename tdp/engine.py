@@ -647,8 +647,11 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         layer = g * width + lane
         return cells[k, 0] - origins[layer, 0], cells[k, 1] - origins[layer, 1]
 
+    # the moves that cross no cell: every other move's crossed cells must be free and make a way of these from one end
+    # to the other (ARCHITECTURE §4), so they join the same cells as the whole stencil (a mend's floods step by them)
+    steps = tuple(m for m in moves if not m.crossed)
     return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, updated=updated,
-                           successor_move=successor_move, window_cell=window_cell, moves=moves)
+                           successor_move=successor_move, window_cell=window_cell, moves=moves, steps=steps)
 
 
 def _given(argument) -> bool:
@@ -1210,13 +1213,11 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
 def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """A mend's first look at its edits (``_Layers._mend``): ``cut_off`` tells whether the cells they blocked cut the
-    free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell: every
-    other move's crossed cells must be free and make a way of those moves from one end to the other (ARCHITECTURE
-    §4), so they join the same cells. Row 2 of a mend's ``trail`` marks the cells looked at (their part + 1), row 1
-    queues them (and logs them: nothing is taken off), row 0 holds each part's ints (``_PART_INTS``: union-find
-    parent, cells waiting, flags)."""
-    blocked = cell.blocked
-    steps = tuple(m for m in cell.moves if not m.crossed)
+    free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell
+    (``_cell_rules``' ``steps``: they join the same cells as the whole stencil). Row 2 of a mend's ``trail`` marks
+    the cells looked at (their part + 1), row 1 queues them (and logs them: nothing is taken off), row 0 holds each
+    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags)."""
+    blocked, steps = cell.blocked, cell.steps
 
     @ti.func
     def at(part, field):
@@ -1288,9 +1289,11 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     mark = trail[2, there]
                     if mark == 0:
                         tail = visit(trail, part, there, tail, source)
-                    elif mark != part + 1 and root(trail, mark - 1) != part:  # two parts meet: one from here on
-                        merge(trail, part, root(trail, mark - 1))
-                        live -= 1
+                    elif mark != part + 1:
+                        other = root(trail, mark - 1)
+                        if other != part:  # two parts meet: one from here on
+                            merge(trail, part, other)
+                            live -= 1
             trail[0, at(part, _WAITING)] -= 1
             if trail[0, at(part, _WAITING)] == 0:  # all it joins looked at: closed
                 trail[0, at(part, _FLAGS)] |= _CLOSED
@@ -1313,12 +1316,10 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
 def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, in bursts. It steps by
-    the moves that cross no cell: every other move's crossed cells must be free and make a way of those moves from
-    one end to the other (ARCHITECTURE §4), so they reach the same cells - where those are the four straight moves,
-    a scanline fill of a few loads a cell, where the whole stencil takes forty. Its queue and marks are rows 1 and 2
-    of a mend's ``trail``."""
-    blocked = cell.blocked
-    steps = tuple(m for m in cell.moves if not m.crossed)
+    the moves that cross no cell (``_cell_rules``' ``steps``: they reach the same cells as the whole stencil) - where
+    those are the four straight moves, a scanline fill of a few loads a cell, where the whole stencil takes forty.
+    Its queue and marks are rows 1 and 2 of a mend's ``trail``."""
+    blocked, steps = cell.blocked, cell.steps
     spans = all(abs(m.dr) + abs(m.dc) == 1 for m in steps)  # the four straight steps: fill by rows
 
     @ti.func
@@ -1488,8 +1489,9 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 i, j = cells[k, 0] + PAD + da, cells[k, 1] + PAD + db
                 value = cap
-                if penalties[k] <= MAX_COST and not blocked(pen[0, i, j]):  # the padding is: its cells' neighbours
-                    value = updated(values, pen, header, cap, 0, i, j)  # lie outside the arrays
+                # the padding is blocked too: its cells' neighbours lie outside the arrays
+                if penalties[k] <= MAX_COST and not blocked(pen[0, i, j]):
+                    value = updated(values, pen, header, cap, 0, i, j)
                 if value < values[0, i, j]:
                     values[0, i, j] = value
                     trail[0, seeds] = i * values.shape[2] + j
@@ -2434,10 +2436,10 @@ class _Layers(_LayerArrays):
         fills = self._fills()
         restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
         budget = int(MEND_SHARE * restart)
-        if sum(len(cells) for cells, _ in self.edits) * EDIT_COST > budget:
+        cells, penalties = _joined(self.edits)
+        if len(cells) * EDIT_COST > budget:
             return self.restart(None, focus)  # its reset paints the edits held back
         self.unpainted = []  # the mend paints every edit since the fixed point (one painted already: again, as it is)
-        cells, penalties = _joined(self.edits)
         self._make_links()
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))

@@ -420,17 +420,18 @@ def reachable_by_the_stencil(occupied: np.ndarray, source, corner_cutting: bool)
     return len(seen)
 
 
-def mend_outcomes(monkeypatch, engine: Engine) -> list:
-    """The results of every mend launch of ``engine``'s goal layer from now on (_MendResult), in a list."""
-    kernels, outcomes = engine._goal.kernels, []
+def mend_runs(monkeypatch, engine: Engine) -> list[np.ndarray]:
+    """The launch array of every mend launch of ``engine``'s goal layer from now on, as it ran (a _MendRun, then
+    its _MendResult), in a list."""
+    kernels, runs = engine._goal.kernels, []
     mend = kernels.mend
 
     def recorded_mend(**arguments):
         mend(**arguments)
-        outcomes.append(engine_module._outcome(engine_module._MendResult, arguments["run"]))
+        runs.append(arguments["run"].copy())
 
     monkeypatch.setattr(kernels, "mend", recorded_mend)
-    return outcomes
+    return runs
 
 
 def test_an_edit_with_more_sides_than_the_look_follows_is_raised_and_mended_exactly():
@@ -496,19 +497,13 @@ def test_a_mend_sweeps_the_tiles_only_when_something_stamped_one(monkeypatch, be
     if before == "rounds":  # an edit repaired by rounds of tiles, to the fixed point
         engine.set_cells(np.array([(40, 40)]), np.ones(1, bool))
         engine.converge(max_rounds=10**6)
-    kernels, settled = engine._goal.kernels, []
-    mend = kernels.mend
-
-    def recorded_mend(**arguments):
-        settled.append(int(arguments["run"][engine_module._MEND.settled]))
-        mend(**arguments)
-
-    monkeypatch.setattr(kernels, "mend", recorded_mend)
+    runs = mend_runs(monkeypatch, engine)
     box = np.array([(20 + i, 20 + j) for i in range(3) for j in range(3)])
     engine.set_cells(box, np.ones(len(box), bool))
     if before == "read":
         engine.goal_distances()
     engine.converge()
+    settled = [int(run[engine_module._MEND.settled]) for run in runs]
     assert engine.converged_by() == "mend" and settled == [int(before == "search")]
     assert not (engine._goal.stamps.to_numpy() >= engine._goal.tick).any()
     assert_equal_to_a_fresh_converge(engine, {})
@@ -529,7 +524,7 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
     occupied[goal] = False
     engine = Engine(occupied, goal, corner_cutting=corner_cutting)
     engine.converge()
-    outcomes = mend_outcomes(monkeypatch, engine)
+    runs = mend_runs(monkeypatch, engine)
     far = farthest(engine)
     box = np.array([(i, j) for i in range(40, 43) for j in range(10, 13)])
     for cells, sealed in ((ring_round(occupied, goal, 5), "goal"), (ring_round(occupied, far, 6), "pocket"), (box, "")):
@@ -537,7 +532,7 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
         before = engine.goal_distances()
         engine.set_cells(cells, np.ones(len(cells), bool))
         engine.converge()
-        after, outcome = engine.goal_distances(), outcomes[-1]
+        after, outcome = engine.goal_distances(), engine_module._outcome(engine_module._MendResult, runs[-1])
         if sealed == "goal":
             assert engine.converged_by() == "search" and outcome.gave_up and outcome.raised == 0
             assert outcome.reached == reachable_by_the_stencil(engine.occupied, goal, corner_cutting)
