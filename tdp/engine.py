@@ -127,11 +127,24 @@ RAISE_COST = 2
 #: map cost a mend 1.5 ms where a restart (the edits painted, the pocket searched) takes 0.6 - 3.3 ms before the
 #: seeds skipped the cells round a blocked one, 25x a fresh converge.
 EDIT_COST = 4
-#: The probe (``_flood_rules``) counts up to this many cells per cell raised: enough to count a pocket the goal is
-#: sealed in before the raise has spent much more than a restart costs, 3-5 % of a large mend's time where it counts
-#: in vain (measured on the 2-core VM; two a cell raised: 10-15 %). It runs only where the mend's first look at the
-#: cut (``_cut_rules``) left parts apart.
-PROBE_SHARE = 1
+#: A mend's probe (``_flood_rules``) counts the cells the source still reaches, racing the first look and the raise
+#: from the start: its work keeps even with theirs (in cells a search takes) until it has done this share of a
+#: reset's fills - the least a restart costs -, then one cell per PROBE_PACE of theirs. So a goal sealed in a pocket
+#: whose count costs less than a reset is counted before the raise has done more work than the count, and one that
+#: costs more at the slower pace, while where it can tell nothing (the source reaches most of the map) it costs the
+#: fills and an eighth more (a quarter, measured: a wall sealing off half a 4-cell maze 1.96x a fresh converge,
+#: against 1.77x, and 1.59x without the race). Before the race, the probe started once the raise had spent MEND_SHARE
+#: of the fills, at half a cell per cell raised: a goal sealed in 10,609 cells of nav2's warehouse map raised 12,609
+#: cells first, where now the probe counts them while the first look runs. A probe that kept even until it had done
+#: half the fills and stopped there left a goal sealed in a pocket it could not count by then to the raise alone
+#: (random 1024², 15x a fresh converge).
+PROBE_FILLS = 1.0
+PROBE_PACE = 8
+#: The probe's work: RAISE_COST a seed (a queued cell loaded from far: 40-70 ns measured on the 2-core VM, as much as a
+#: raised cell) and one per this many cells it counts (5 ns each). A 1-cell maze's cells are all seeds, an open map's
+#: row of hundreds of cells one; a seed priced as one, the probe's work ran at twice the raise's in a maze, and a box
+#: that reroutes half of one cost 1.85x a fresh converge, against 1.60x.
+PROBED_PER_SEED = 8
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
 CUT_PARTS = 4096
@@ -139,13 +152,19 @@ CUT_PARTS = 4096
 #: cell (measured on the 2-core VM: 45-55 ns a cell looked at, the parts' merges and the marks cleared after counted,
 #: 13-25 ns as a plain breadth-first fill, against 50-65 ns a cell a search takes): enough to tell that a box or a
 #: wall cut nothing - its sides meet round it within a few rings of cells - and to find a pocket or a goal sealed in
-#: of a few hundred cells, little against the raise it spares where it finds nothing (the probe then starts once the
-#: raise has spent MEND_SHARE of the fills). A/B on the 2-core VM: 0.5 made boxes and walls 5-6 % faster (no probe
-#: counts in vain after it) and the mend of a goal sealed in a pocket of 62-405 cells 7-32 %, and cost pockets of
-#: thousands of cells 1-12 % (it looks in vain); four times as much cost a 1024² map's pocket of 13,000 cells 1.5x.
+#: of a few hundred cells, little against the raise it spares where it finds nothing. A/B on the 2-core VM: 0.5 made
+#: boxes and walls 5-6 % faster (no probe counts in vain after it) and the mend of a goal sealed in a pocket of
+#: 62-405 cells 7-32 %, and cost pockets of thousands of cells 1-12 % (it looks in vain); four times as much cost a
+#: 1024² map's pocket of 13,000 cells 1.5x.
 CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
+#: A mend's ``trail``: rows 0-2 its first look's (parts, queue, marks: ``_cut_rules``), row 0 then its raised cells
+#: and seeds, row 3 its probe's queue (``_flood_rules``); in row 2 the probe's mark is the bit _PROBED, above the
+#: look's (its part + 1, in the bits _LOOKED).
+_TRAIL_ROWS, _PROBE_QUEUE = 4, 3
+_PROBED = 1 << 30
+_LOOKED = _PROBED - 1
 #: Cells a search must take for its time to price a cell (``_Layers._fills``): a smaller one's time is mostly its
 #: launch and hand-over - a goal sealed in a pocket of 20 cells priced a cell at 12 µs, against 50-65 ns.
 PRICED_SEARCH = 4096
@@ -249,9 +268,9 @@ class _SearchResult(NamedTuple):
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
     stamped for, its budget (cells a search takes: past it, the mend gives way to a restart), a restart's price and
-    a reset's fills in those units, the cells its first look at the cut may take (``_cut_rules``), the cells its
-    probe may count per cell raised, whether every tile is settled already (1: the hand-over stamps the frontier
-    alone), and whether to mend (0: a launch that only compiles)."""
+    a reset's fills in those units, the cells its first look at the cut may take (``_cut_rules``), the work its
+    probe may do evenly with the mend's in those units (``_flood_rules``), whether every tile is settled already (1:
+    the hand-over stamps the frontier alone), and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -260,22 +279,24 @@ class _MendRun(NamedTuple):
     restart: int
     fills: int
     looks: int
-    probe_share: int
+    probe_budget: int
     settled: int
     go: int
 
 
 class _MendResult(NamedTuple):
     """What ``mend`` hands back: the buckets emptied, the cells left to lower (a focused mend's frontier), the cells
-    raised to the cap, the cells the source still reaches where the edits sealed it in (-1: they did not), its work
-    in cells a search takes, and whether it gave up for a restart (the source sealed in, or its work passed the
-    budget)."""
+    raised to the cap, the cells the source still reaches if counted (-1: not), its work in cells a search takes
+    (the probe's apart), the cells and seeds its probe counted and queued, and whether it gave up for a restart (a
+    restart cost less than the rest of the mend, or its work passed the budget)."""
 
     buckets: int
     frontier: int
     raised: int
     reached: int
     spent: int
+    probed: int
+    seeded: int
     gave_up: int
 
 
@@ -1211,13 +1232,15 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                            clear=clear)
 
 
-def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
+def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespace:
     """A mend's first look at its edits (``_Layers._mend``): ``cut_off`` tells whether the cells they blocked cut the
     free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell
     (``_cell_rules``' ``steps``: they join the same cells as the whole stencil). Row 2 of a mend's ``trail`` marks
     the cells looked at (their part + 1), row 1 queues them (and logs them: nothing is taken off), row 0 holds each
-    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags)."""
+    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). The probe (``_flood_rules``) keeps pace with
+    it (``probing``: ``_flood_rules``'), its marks above the look's in row 2 (``_PROBED``)."""
     blocked, steps = cell.blocked, cell.steps
+    pace, counted = probing.pace, probing.counted
 
     @ti.func
     def at(part, field):
@@ -1235,11 +1258,17 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
     @ti.func
     def visit(trail: ti.template(), part, c, tail, source):
         """Mark padded cell ``c`` (row-major) as ``part``'s and queue it at ``tail``; returns the new tail."""
-        trail[2, c], trail[1, tail] = part + 1, c
+        trail[2, c] |= part + 1
+        trail[1, tail] = c
         trail[0, at(part, _WAITING)] += 1
         if c == source:
             trail[0, at(part, _FLAGS)] |= _HOLDS_SOURCE
         return tail + 1
+
+    @ti.func
+    def part_of(trail: ti.template(), c):
+        """The part that marked padded cell ``c`` (row-major) when it looked at it (-1: none)."""
+        return (trail[2, c] & _LOOKED) - 1
 
     @ti.func
     def merge(trail: ti.template(), part, other):
@@ -1250,17 +1279,18 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def cut_off(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
-                cells: ti.template(), penalties: ti.template(), cap, budget):
+                cells: ti.template(), penalties: ti.template(), cap, budget, probe):
         """Breadth-first from every free cell beside a cell the edits blocked, each a part of its own, in one queue:
         parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it
         joins. It stops once one part is left (every other merged into it or closed), the source's part ran dry, it
-        has looked at ``budget`` cells, or the blocked cells have more than CUT_PARTS free cells beside them. If the
+        has looked at ``budget`` cells, the ``probe`` (kept abreast: ``_flood_rules``' ``pace``) has counted the
+        cells the source reaches, or the blocked cells have more than CUT_PARTS free cells beside them. If the
         edits left the source's part closed, the cells in it are what a restart searches (none if they blocked the
         source); else the parts closed without the source - pockets sealed off - have their cells set to the cap at
         once (no raise). If every part merged into one, the edits cut nothing: a way round each blocked cell joins
         its neighbours, so a route through it has a way round too. Returns (the cells the source's closed part
         holds, -1 if none; cells looked at; 1 if it stopped short with parts apart - the source may lie in one
-        closed - else 0)."""
+        closed - else 0) and the probe."""
         width = values.shape[2]
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
@@ -1270,7 +1300,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             if penalties[k] > MAX_COST:
                 for m in ti.static(steps):
                     i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
-                    if trail[2, i * width + j] == 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
+                    if part_of(trail, i * width + j) < 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
                         if live < most:
                             trail[0, at(live, _PARENT)], trail[0, at(live, _FLAGS)] = live, 0
                             trail[0, at(live, _WAITING)] = 0
@@ -1278,19 +1308,20 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                             live += 1
                         crowded |= live == most
         head, sealed = 0, -1
-        while not (crowded or lost) and live > 1 and head < tail and head < budget and sealed < 0:
+        while not (crowded or lost or counted(probe)) and live > 1 and head < tail and head < budget and sealed < 0:
             c = trail[1, head]
             head += 1
-            part = root(trail, trail[2, c] - 1)
+            probe = pace(pen, trail, probe, head)
+            part = root(trail, part_of(trail, c))
             i, j = c // width, c % width
             for m in ti.static(steps):
                 if not blocked(pen[0, i + m.dr, j + m.dc]):
                     there = c + m.dr * width + m.dc
-                    mark = trail[2, there]
-                    if mark == 0:
+                    marked = part_of(trail, there)
+                    if marked < 0:
                         tail = visit(trail, part, there, tail, source)
-                    elif mark != part + 1:
-                        other = root(trail, mark - 1)
+                    elif marked != part:
+                        other = root(trail, marked)
                         if other != part:  # two parts meet: one from here on
                             merge(trail, part, other)
                             live -= 1
@@ -1303,66 +1334,120 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         reached = ti.select(sealed >= 0 or lost, 0, -1)
         for k in range(tail):
             c = trail[1, k]
-            flags = trail[0, at(root(trail, trail[2, c] - 1), _FLAGS)]
-            trail[2, c] = 0
+            flags = trail[0, at(root(trail, part_of(trail, c)), _FLAGS)]
+            trail[2, c] &= _PROBED
             if sealed >= 0:
                 reached += flags & _HOLDS_SOURCE
             elif flags & _CLOSED:
                 values[0, c // width, c % width] = cap
-        return ti.Vector([reached, head, ti.select(crowded or live > 1, 1, 0)])
+        return ti.Vector([reached, head, ti.select(crowded or live > 1, 1, 0)]), probe
 
     return SimpleNamespace(cut_off=cut_off)
 
 
+@ti.func
+def _budget_for(budget, restart, fills, reached):
+    """A mend's ``budget`` (the share MEND_SHARE of ``restart``, a restart's price in cells a search takes, the
+    reset's ``fills`` in it) once the cells the source reaches are counted (``reached``; -1: not yet): the same share
+    of the price of a restart that searches those, where that is less."""
+    fallen = budget
+    if reached >= 0:
+        fallen = ti.min(budget, ti.i32(ti.f64(budget) / restart * (reached + fills)))
+    return fallen
+
+
+def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
+    """Whether a source that now reaches ``reached`` cells (-1: not counted) lost so many of the cells the last search
+    reached (a restart's price ``restart``, in cells a search takes, less the reset's ``fills``) that raising them
+    all (RAISE_COST each) costs a mend more than a restart, which searches the cells it reaches: a goal sealed in a
+    pocket. A pure rule, compiled into the mend as ``_doomed``."""
+    return reached >= 0 and RAISE_COST * (restart - fills - reached) > reached + fills
+
+
+def most_telling(restart: int, fills: int) -> int:
+    """The most cells a source may reach for :func:`restart_is_cheaper` to hold (the same terms): a probe that has
+    counted more can tell nothing. Compiled into the mend as ``_telling``."""
+    return (RAISE_COST * (restart - fills) - fills - 1) // (RAISE_COST + 1)
+
+
+def probe_work(seeds: int, cells: int) -> int:
+    """A mend's probe's work in cells a search takes, with ``seeds`` queued and ``cells`` counted: RAISE_COST a seed (a
+    queued cell loaded from far, 40-70 ns measured on the 2-core VM, as much as a raised cell) and one per
+    PROBED_PER_SEED cells (5 ns each) - a 1-cell maze's cells are all seeds, an open map's row of hundreds of cells
+    one. Compiled into the mend as ``_probe_work``."""
+    return RAISE_COST * seeds + cells // PROBED_PER_SEED
+
+
+_doomed, _telling, _probe_work = ti.func(restart_is_cheaper), ti.func(most_telling), ti.func(probe_work)
+
+
 def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
-    """A mend's probe of a restart's price: ``flood`` counts the cells the source reaches, in bursts. It steps by
-    the moves that cross no cell (``_cell_rules``' ``steps``: they reach the same cells as the whole stencil) - where
-    those are the four straight moves, a scanline fill of a few loads a cell, where the whole stencil takes forty.
-    Its queue and marks are rows 1 and 2 of a mend's ``trail``."""
+    """A mend's probe of a restart's price: it counts the cells the source reaches, racing the mend's first look and
+    its raise (``pace``). It steps by the moves that cross no cell (``_cell_rules``' ``steps``: they reach the same
+    cells as the whole stencil) - where those are the four straight moves, a scanline fill of a few loads a cell,
+    where the whole stencil takes forty. Its queue is row ``_PROBE_QUEUE`` of a mend's ``trail``, its marks the
+    ``_PROBED`` bit of row 2 (the first look's marks lie below it). A probe is (head, tail, cells marked, the count
+    past which it tells nothing, the work in cells a search takes it may do evenly with the mend's): its queue of
+    seeds is ``trail[_PROBE_QUEUE, head:tail]``, each a cell marked, and head == tail once every cell the source
+    reaches is counted. Its work is :func:`probe_work`'s."""
     blocked, steps = cell.blocked, cell.steps
     spans = all(abs(m.dr) + abs(m.dc) == 1 for m in steps)  # the four straight steps: fill by rows
 
     @ti.func
     def open_cell(pen: ti.template(), trail: ti.template(), width, i, j):
         """Whether padded cell (i, j) is free and not yet marked."""
-        return trail[2, i * width + j] == 0 and not blocked(pen[0, i, j])
+        return (trail[2, i * width + j] & _PROBED) == 0 and not blocked(pen[0, i, j])
 
     @ti.func
     def enqueue(trail: ti.template(), width, i, j, tail):
         """Mark padded cell (i, j) and queue it as a seed at ``tail`` (its row and column packed in one int32:
         ``(i << 16) | j``); returns the new tail."""
-        trail[1, tail], trail[2, i * width + j] = (i << 16) | j, 1
+        trail[_PROBE_QUEUE, tail] = (i << 16) | j
+        trail[2, i * width + j] |= _PROBED
         return tail + 1
 
     @ti.func
     def queued(trail: ti.template(), k):
         """The padded (row, column) of seed ``k`` of the queue (``enqueue``)."""
-        return trail[1, k] >> 16, trail[1, k] & 0xFFFF
+        return trail[_PROBE_QUEUE, k] >> 16, trail[_PROBE_QUEUE, k] & 0xFFFF
 
     @ti.func
-    def flood(pen: ti.template(), header: ti.template(), trail: ti.template(), state, until):
-        """Go on with the flood (``state``: (head, tail, cells marked) - its queue of seeds ``trail[1, head:tail]``,
-        each a cell marked; nothing queued yet: start at the source, if free) until ``until`` cells are marked or no
-        seed is left; returns the new state: head == tail once every cell the source reaches is counted. With the
+    def start(pen: ti.template(), header: ti.template(), trail: ti.template(), most, allowance):
+        """A probe with the source queued (none if blocked: it reaches nothing) that keeps even with a mend's work up to
+        ``allowance`` and stops past ``most`` cells counted, as it could no longer tell anything."""
+        i, j = header[SOURCE_ROW], header[SOURCE_COL]
+        tail = 0
+        if not blocked(pen[0, i, j]):
+            tail = enqueue(trail, pen.shape[2], i, j, tail)
+        return ti.Vector([0, tail, tail, most, allowance])
+
+    @ti.func
+    def counted(probe):
+        """Whether ``probe`` has counted every cell the source reaches."""
+        return probe[0] == probe[1]
+
+    @ti.func
+    def pace(pen: ti.template(), trail: ti.template(), probe, work):
+        """Go on with ``probe`` until its work matches the mend's ``work`` (cells a search takes: looked at, raised) -
+        evenly up to its allowance, one cell per PROBE_PACE of the mend's past it -, it has counted past its most,
+        or no seed is left; returns the new probe. With the
         straight steps (``spans``) a seed's row is filled left and right at once, and a seed is queued for each run
         of open cells beside the filled span in the rows above and below (a scanline fill: a few loads a cell);
         else each seed queues its open neighbours."""
         width = pen.shape[2]
-        head, tail, marked = state[0], state[1], state[2]
-        i, j = header[SOURCE_ROW], header[SOURCE_COL]
-        if tail == 0 and not blocked(pen[0, i, j]):
-            tail, marked = enqueue(trail, width, i, j, tail), 1
-        while head < tail and marked < until:
+        head, tail, marked = probe[0], probe[1], probe[2]
+        even = ti.min(work, probe[4] + work // PROBE_PACE)  # its work's match: even, then one per PROBE_PACE
+        while head < tail and marked <= probe[3] and _probe_work(tail, marked) < even:
             i, j = queued(trail, head)
             head += 1
             if ti.static(spans):
                 left, right = j, j
                 while open_cell(pen, trail, width, i, left - 1):
                     left -= 1
-                    trail[2, i * width + left] = 1
+                    trail[2, i * width + left] |= _PROBED
                 while open_cell(pen, trail, width, i, right + 1):
                     right += 1
-                    trail[2, i * width + right] = 1
+                    trail[2, i * width + right] |= _PROBED
                 marked += right - left
                 for row in ti.static((-1, 1)):
                     run = False
@@ -1378,34 +1463,34 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     if open_cell(pen, trail, width, u, v):
                         tail = enqueue(trail, width, u, v, tail)
                         marked += 1
-        return ti.Vector([head, tail, marked])
+        probe[0], probe[1], probe[2] = head, tail, marked
+        return probe
 
     @ti.func
-    def unmark(trail: ti.template(), width, tail):
-        """Clear the marks of a flood that queued ``tail`` seeds (``width``: the padded layer's): each seed's and,
-        filling by spans, the marked run of its row round it."""
-        for k in range(tail):
+    def unmark(trail: ti.template(), width, probe):
+        """Clear the marks of ``probe`` (``width``: the padded layer's): each seed's and, filling by spans, the
+        marked run of its row round it."""
+        for k in range(probe[1]):
             i, j = queued(trail, k)
-            trail[2, i * width + j] = 0
+            trail[2, i * width + j] &= _LOOKED
             if ti.static(spans):
                 left, right = j - 1, j + 1
-                while trail[2, i * width + left] == 1:
-                    trail[2, i * width + left] = 0
+                while trail[2, i * width + left] & _PROBED:
+                    trail[2, i * width + left] &= _LOOKED
                     left -= 1
-                while trail[2, i * width + right] == 1:
-                    trail[2, i * width + right] = 0
+                while trail[2, i * width + right] & _PROBED:
+                    trail[2, i * width + right] &= _LOOKED
                     right += 1
 
-    return SimpleNamespace(flood=flood, unmark=unmark)
+    return SimpleNamespace(start=start, counted=counted, pace=pace, unmark=unmark)
 
 
-def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
+def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespace:
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
     them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
     the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
     moves, move_cost, blocked, updated = cell.moves, cell.move_cost, cell.blocked, cell.updated
-    probing = _flood_rules(cell)
-    flood, unmark = probing.flood, probing.unmark
+    pace, counted = probing.pace, probing.counted
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, top, i, j):
@@ -1420,7 +1505,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget, restart, fills, probe_share, probing):
+                  trail: ti.template(), cells: ti.template(), cap, budget, terms, probe, spent):
         """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
@@ -1429,21 +1514,19 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         least a move lower, down to the source). Only a raised cell's dependants - neighbours whose value is its
         old one plus their move to it - are looked at again. The raised cells go in row 0 of ``trail``.
 
-        It stops once its work passes ``budget`` (cells a search takes: a raise costs RAISE_COST each), the share
-        of ``restart`` (a restart's price in those units, the reset's ``fills`` in it) it may spend. Once the raise
-        has cost that share of the fills - the least budget any restart's price allows - the probe (``flood``)
-        counts the cells the source reaches, in bursts each time that cost doubles, ``probe_share`` of the cells
-        raised in all: once it has them all, a restart's price is known - those cells and the fills - and the
-        budget falls to the share of it where that is less (a goal sealed in a pocket: every other cell would rise,
-        where a restart searches the pocket). Returns (cells raised, the budget, the cells the source reaches (-1:
-        not counted))."""
-        top, raised, probe, reached = 0, 0, ti.Vector([0, 0, 0]), -1
-        share = ti.f64(budget) / restart
-        probe_at = ti.max(ti.i32(share * fills), 1)
+        It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
+        search takes: the share of a restart's price the mend may spend). ``terms``: (a restart's price in those
+        cells, the reset's fills in it, 1 if the ``probe`` (``_flood_rules``) may tell more, else 0, the cells the
+        source reaches if counted, else -1). The probe keeps pace with the work (``pace``); once the cells the
+        source reaches are counted, the raise stops if a restart costs less than raising the rest (``_doomed``), and
+        the budget falls to a restart's share (``_budget_for``). Returns (cells raised, the budget, the cells the
+        source reaches (-1: not counted)) and the probe."""
+        top, raised, reached = 0, 0, terms[3]
+        budget = _budget_for(budget, terms[0], terms[1], reached)
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 top = push(values, links, cap, top, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
-        while top > 0 and raised * RAISE_COST <= budget:
+        while top > 0 and spent + raised * RAISE_COST <= budget and not _doomed(reached, terms[0], terms[1]):
             top -= 1
             c = links[0, top]
             links[1, c] = _UNLISTED
@@ -1457,17 +1540,15 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
                     u, v = i - m.dr, j - m.dc  # a move whose crossing is now blocked starts within reach of an edit)
                     if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
                         top = push(values, links, cap, top, u, v)
-                if probing and reached < 0 and raised * RAISE_COST > probe_at:
-                    probe = flood(pen, header, trail, probe, ti.max(probe[2] + 1, probe_share * raised))
-                    if probe[0] == probe[1]:
+                if terms[2] > 0 and reached < 0:
+                    probe = pace(pen, trail, probe, spent + raised * RAISE_COST)
+                    if counted(probe):
                         reached = probe[2]
-                        budget = ti.min(budget, ti.i32(share * (reached + fills)))
-                    probe_at *= 2
+                        budget = _budget_for(budget, terms[0], terms[1], reached)
         while top > 0:  # over budget: the stack emptied, for the restart
             top -= 1
             links[1, links[0, top]] = _UNLISTED
-        unmark(trail, values.shape[2], probe[1])
-        return ti.Vector([raised, budget, reached])
+        return ti.Vector([raised, budget, reached]), probe
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -1726,19 +1807,21 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_SEARCHED.taken] = found[2]
 
 
-    raising = _raise_rules(cell)
+    probing = _flood_rules(cell)
+    raising = _raise_rules(cell, probing)
     raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(rules).lower_cut
-    cut_off = _cut_rules(cell).cut_off
+    cut_off = _cut_rules(cell, probing).cut_off
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
              trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_cut_rules``' ``cut_off``, ``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``'
-        ``lower_cut``; ``run``: a _MendRun), the tiles then handed over to settling for round ``tick``; its results (a
-        _MendResult) go in ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them back
-        for it). ``trail``: (3, padded cells), its rows ``cut_off``'s and ``raise_cut``'s, all 0 in row 2. A goal
-        the edits sealed in, it gives up for a restart at once."""
+        ``lower_cut``, ``_flood_rules``' probe keeping pace with the first two; ``run``: a _MendRun), the tiles then
+        handed over to settling for round ``tick``; its results (a _MendResult) go in ``run``. The edits'
+        ``penalties`` are painted first (``_LayerArrays.paint`` holds them back for it). ``trail``: (_TRAIL_ROWS,
+        padded cells), its rows ``cut_off``'s, ``raise_cut``'s and the probe's, all 0 in row 2. A goal the edits
+        sealed in, it gives up for a restart as soon as it knows."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
@@ -1746,16 +1829,22 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 store_penalty(pen, 0, i, j, 0, penalties[k])
                 if penalties[k] > MAX_COST:
                     values[0, i, j] = cap
-            budget = run[_MEND.budget]
-            looked = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks])
+            budget, restart, fills = run[_MEND.budget], run[_MEND.restart], run[_MEND.fills]
+            probe = probing.start(pen, header, trail, _telling(restart, fills), run[_MEND.probe_budget])
+            looked, probe = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], probe)
             reached, spent, raised = looked[0], looked[1], 0
-            if reached < 0:
-                cut = raise_cut(values, pen, header, links, trail, cells, cap, budget - spent, run[_MEND.restart],
-                                run[_MEND.fills], run[_MEND.probe_share], looked[2])
-                raised, budget, reached = cut[0], cut[1] + spent, cut[2]
+            if reached < 0 and probing.counted(probe):
+                reached = probe[2]
+            if not _doomed(reached, restart, fills):
+                telling = ti.select(looked[2] == 1 and reached < 0, 1, 0)
+                cut, probe = raise_cut(values, pen, header, links, trail, cells, cap, budget,
+                                       ti.Vector([restart, fills, telling, reached]), probe, spent)
+                raised, budget, reached = cut[0], cut[1], cut[2]
+            probing.unmark(trail, values.shape[2], probe)
             spent += raised * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
-            run[_MENDED.gave_up] = ti.select(spent > budget or looked[0] >= 0, 1, 0)
+            run[_MENDED.probed], run[_MENDED.seeded] = probe[2], probe[1]
+            run[_MENDED.gave_up] = ti.select(spent > budget or _doomed(reached, restart, fills), 1, 0)
             if run[_MENDED.gave_up]:
                 continue
             seeds = seed_cut(values, pen, header, trail, cells, penalties, raised, cap)
@@ -2204,7 +2293,8 @@ class _LayerArrays:
         scratch = _LayerArrays(self.kernels, 1, (1, 1), np.zeros((max(self.lanes, 1), 2), np.int32), (PAD, PAD), 0.0)
         # the search's and the mend's arrays as Taichi ndarrays, as every later launch passes them (a numpy array
         # compiles another kernel: the first mend compiled for 1.6 s inside a planner's tick)
-        scratch.links, scratch.trail = ti.ndarray(ti.i32, (2, IDLE_ENTRIES)), ti.ndarray(ti.i32, (3, IDLE_ENTRIES))
+        scratch.links = ti.ndarray(ti.i32, (2, IDLE_ENTRIES))
+        scratch.trail = ti.ndarray(ti.i32, (_TRAIL_ROWS, IDLE_ENTRIES))
         for kernel in self.kernels.all:
             kernel(**{parameter.name: _idle_argument(parameter, scratch)
                       for parameter in inspect.signature(kernel).parameters.values()})
@@ -2442,10 +2532,11 @@ class _Layers(_LayerArrays):
         self.unpainted = []  # the mend paints every edit since the fixed point (one painted already: again, as it is)
         self._make_links()
         if self.trail is None:
-            self.trail = ti.ndarray(ti.i32, (3, self.padded_cells))
+            self.trail = ti.ndarray(ti.i32, (_TRAIL_ROWS, self.padded_cells))
             self.trail.fill(0)
         looks = min(budget, int(CUT_SHARE * fills))
-        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks, PROBE_SHARE,
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks,
+                               min(int(PROBE_FILLS * fills), _NEVER),
                                int(self.tiles_settled), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,

@@ -84,15 +84,20 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
 @pytest.mark.parametrize("serially, restart_share", [(True, 0.5), (False, 0.5), (True, 0.0), (True, 1e-4)])
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
-@given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans(), st.sampled_from([0.0, 1e9]))
+@given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans(), st.sampled_from([0.0, 1e9]),
+       st.sampled_from([(0.0, 10**9), (1.0, 4), (1e9, 1)]))
 def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, restart_share, sequence, neighbourhood,
-                                                    corner_cutting, with_nodes, cut_share):
+                                                    corner_cutting, with_nodes, cut_share, probe):
     """... also when every repair that takes more than a slice restarts instead (share 0), and when some do, in
     the middle of a round (a tiny share); a mend's first look at what its edits cut off left out, or run to the
-    end (every pocket it seals found and capped before the raise)."""
+    end (every pocket it seals found and capped before the raise); its probe of the cells the source reaches left
+    out, or run until it can tell nothing more (a goal sealed in restarted as soon as it is counted). Every mend
+    leaves its trail's marks clear for the next."""
     launch_rounds(monkeypatch, serially)
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
     monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)  # a mend's look at the cut: none, or to the end
+    monkeypatch.setattr(engine_module, "PROBE_FILLS", probe[0])  # the probe: none, as it is, or even to the end
+    monkeypatch.setattr(engine_module, "PROBE_PACE", probe[1])
     monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1 if restart_share < 0.5 else 16)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
@@ -108,8 +113,18 @@ def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, resta
         if rng.random() < 0.6:
             engine.converge()
             assert_equal_to_a_fresh_converge(engine, options)
+            assert_no_marks_left(engine)
     engine.converge()
     assert_equal_to_a_fresh_converge(engine, options)
+    assert_no_marks_left(engine)
+
+
+def assert_no_marks_left(engine: Engine) -> None:
+    """A mend's first look and its probe mark the cells they reach in row 2 of its trail and must clear them all:
+    the next mend reads a mark as a cell already reached."""
+    trail = engine._goal.trail
+    if trail is not None:
+        assert not trail.to_numpy()[2].any()
 
 
 @pytest.mark.parametrize("serially", [True, False])
@@ -545,6 +560,59 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
         engine.set_cells(cells, np.zeros(len(cells), bool))
         engine.converge()
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True])
+def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(monkeypatch,
+                                                                                                 corner_cutting):
+    """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start:
+    it counts the cells a BFS by the stencil reaches while the raise has done no more work than it has, and the
+    mend gives way to a restart at once (before the race, the probe started once the raise had spent its share of
+    the fills, at half a cell per cell raised). The same ring round a far cell leaves the source most of the map:
+    the probe tells nothing, at most the fills and an eighth of the mend's work, and the pocket is mended."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
+    rng = np.random.default_rng(11)
+    occupied = rng.random((120, 120)) < 0.15
+    goal = (60, 60)
+    occupied[goal] = False
+    engine = Engine(occupied, goal, corner_cutting=corner_cutting)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    for centre, by in ((goal, "search"), (farthest(engine), "mend")):
+        ring = ring_round(occupied, centre, 12)
+        engine.set_cells(ring, np.ones(len(ring), bool))
+        engine.converge()
+        launch = engine_module._MendRun(*runs[-1][:len(engine_module._MendRun._fields)])
+        outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+        probed = engine_module.probe_work(outcome.seeded, outcome.probed)
+        assert engine.converged_by() == by
+        if by == "search":
+            assert outcome.gave_up and outcome.reached == reachable_by_the_stencil(engine.occupied, goal,
+                                                                                   corner_cutting)
+            assert 0 < outcome.raised * engine_module.RAISE_COST <= probed + engine_module.RAISE_COST
+        else:
+            assert not outcome.gave_up and outcome.reached == -1
+            work = outcome.spent  # the look's, the raise's and the lowering's; one seed's row past it at most
+            assert probed <= launch.probe_budget + work // engine_module.PROBE_PACE + occupied.shape[1]
+        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+        assert_no_marks_left(engine)
+        engine.set_cells(ring, np.zeros(len(ring), bool))
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+
+
+@given(st.integers(1, 10**6), st.floats(0, 1), st.floats(0, 1.2))
+def test_the_probe_stops_exactly_where_its_count_could_no_longer_call_for_a_restart(restart, fills_share,
+                                                                                    reached_share):
+    """``most_telling`` is the largest count for which ``restart_is_cheaper`` holds: the probe stops past it, and
+    a restart is never called for a count above it, nor for none (-1)."""
+    fills = int(fills_share * restart)
+    most = engine_module.most_telling(restart, fills)
+    reached = int(reached_share * (restart - fills))
+    assert engine_module.restart_is_cheaper(reached, restart, fills) == (reached <= most)
+    assert not engine_module.restart_is_cheaper(most + 1, restart, fills)
+    assert most < 0 or engine_module.restart_is_cheaper(most, restart, fills)
+    assert not engine_module.restart_is_cheaper(-1, restart, fills)
 
 
 @pytest.mark.parametrize("focused", [False, True])
