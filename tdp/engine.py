@@ -645,6 +645,21 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         return ti.select(blocked_lanes(pen, g, i, j), broadcast(cap), best)
 
     @ti.func
+    def leaning(src: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
+        """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) whose target's value
+        is the cell's plus the move's cost: the neighbours whose route may come through the cell, in the same loads
+        (the stencil is symmetric, and a move's cost back is the same sum, bit for bit)."""
+        best, value, leans = cap, src[0, i, j], 0
+        for k, m in ti.static(tuple(enumerate(moves))):
+            there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
+            cand = crossing(there + cost, pen, 0, i, j, m.crossed)
+            best = ti.select(cand < best, cand, best)
+            leans |= ti.select(there == value + cost, 1 << k, 0)
+        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
+            best = 0.0
+        return ti.select(blocked_lanes(pen, 0, i, j), cap, best), leans
+
+    @ti.func
     def successor_move(values: ti.template(), pen: ti.template(), header: ti.template(), cap, g, lane, i, j):
         """Index of the argmin move from (i, j) (eqs. 7 and 12), first in tie order; -1 at the source or the cap."""
         best = cap
@@ -672,7 +687,8 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
     # to the other (ARCHITECTURE §4), so they join the same cells as the whole stencil (a mend's floods step by them)
     steps = tuple(m for m in moves if not m.crossed)
     return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, updated=updated,
-                           successor_move=successor_move, window_cell=window_cell, moves=moves, steps=steps)
+                           leaning=leaning, successor_move=successor_move, window_cell=window_cell, moves=moves,
+                           steps=steps)
 
 
 def _given(argument) -> bool:
@@ -1489,7 +1505,7 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
     them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
     the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
-    moves, move_cost, blocked, updated = cell.moves, cell.move_cost, cell.blocked, cell.updated
+    moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
     pace, counted = probing.pace, probing.counted
 
     @ti.func
@@ -1532,14 +1548,14 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
             links[1, c] = _UNLISTED
             i, j = c // values.shape[2], c % values.shape[2]
             value = values[0, i, j]
-            if value < cap and updated(values, pen, header, cap, 0, i, j) > value:
+            relaxed, leans = leaning(values, pen, header, cap, i, j)
+            if value < cap and relaxed > value:
                 values[0, i, j] = cap
                 trail[0, raised] = c
                 raised += 1
-                for m in ti.static(moves):  # the neighbours whose value came through this cell's (their route;
-                    u, v = i - m.dr, j - m.dc  # a move whose crossing is now blocked starts within reach of an edit)
-                    if value + move_cost(pen, 0, u, v, m) == values[0, u, v]:
-                        top = push(values, links, cap, top, u, v)
+                for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
+                    if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
+                        top = push(values, links, cap, top, i + m.dr, j + m.dc)  # reach of an edit)
                 if terms[2] > 0 and reached < 0:
                     probe = pace(pen, trail, probe, spent + raised * RAISE_COST)
                     if counted(probe):
