@@ -1253,8 +1253,8 @@ def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespa
     free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell
     (``_cell_rules``' ``steps``: they join the same cells as the whole stencil). Row 2 of a mend's ``trail`` marks
     the cells looked at (their part + 1), row 1 queues them (and logs them: nothing is taken off), row 0 holds each
-    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). The probe (``_flood_rules``) keeps pace with
-    it (``probing``: ``_flood_rules``'), its marks above the look's in row 2 (``_PROBED``)."""
+    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). The probe (``probing``: ``_flood_rules``')
+    keeps pace with it, its marks above the look's in row 2 (``_PROBED``)."""
     blocked, steps = cell.blocked, cell.steps
     pace, counted = probing.pace, probing.counted
 
@@ -1446,10 +1446,9 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
     def pace(pen: ti.template(), trail: ti.template(), probe, work):
         """Go on with ``probe`` until its work matches the mend's ``work`` (cells a search takes: looked at, raised) -
         evenly up to its allowance, one cell per PROBE_PACE of the mend's past it -, it has counted past its most,
-        or no seed is left; returns the new probe. With the
-        straight steps (``spans``) a seed's row is filled left and right at once, and a seed is queued for each run
-        of open cells beside the filled span in the rows above and below (a scanline fill: a few loads a cell);
-        else each seed queues its open neighbours."""
+        or no seed is left; returns the new probe. With the straight steps (``spans``) a seed's row is filled left
+        and right at once, and a seed is queued for each run of open cells beside the filled span in the rows above
+        and below (a scanline fill: a few loads a cell); else each seed queues its open neighbours."""
         width = pen.shape[2]
         head, tail, marked = probe[0], probe[1], probe[2]
         even = ti.min(work, probe[4] + work // PROBE_PACE)  # its work's match: even, then one per PROBE_PACE
