@@ -563,14 +563,19 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
 
 
 @pytest.mark.parametrize("corner_cutting", [False, True])
+@pytest.mark.parametrize("probe_fills", [1.0, 1e9])
 def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(monkeypatch,
-                                                                                                 corner_cutting):
+                                                                                                 corner_cutting,
+                                                                                                 probe_fills):
     """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start:
-    it counts the cells a BFS by the stencil reaches while the raise has done no more work than it has, and the
-    mend gives way to a restart at once (before the race, the probe started once the raise had spent its share of
-    the fills, at half a cell per cell raised). The same ring round a far cell leaves the source most of the map:
-    the probe tells nothing, at most the fills and an eighth of the mend's work, and the pocket is mended."""
+    it counts the cells a BFS by the stencil reaches and the mend gives way to a restart at once; kept even with the
+    raise throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more
+    work than the count (before the race, the probe started once the raise had spent its share of the fills, at half
+    a cell per cell raised). The same ring round a far cell leaves the source most of the map: the probe tells
+    nothing - its work within its allowance and an eighth of the mend's, or kept even, its count stopped past
+    ``most_telling`` - and the pocket is mended."""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
+    monkeypatch.setattr(engine_module, "PROBE_FILLS", probe_fills)
     rng = np.random.default_rng(11)
     occupied = rng.random((120, 120)) < 0.15
     goal = (60, 60)
@@ -578,6 +583,7 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
     engine = Engine(occupied, goal, corner_cutting=corner_cutting)
     engine.converge()
     runs = mend_runs(monkeypatch, engine)
+    width = occupied.shape[1]  # one seed's row past a bound at most
     for centre, by in ((goal, "search"), (farthest(engine), "mend")):
         ring = ring_round(occupied, centre, 12)
         engine.set_cells(ring, np.ones(len(ring), bool))
@@ -589,11 +595,15 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
         if by == "search":
             assert outcome.gave_up and outcome.reached == reachable_by_the_stencil(engine.occupied, goal,
                                                                                    corner_cutting)
-            assert 0 < outcome.raised * engine_module.RAISE_COST <= probed + engine_module.RAISE_COST
+            assert outcome.raised > 0
+            if probe_fills > 1:
+                assert outcome.raised * engine_module.RAISE_COST <= probed + engine_module.RAISE_COST
         else:
             assert not outcome.gave_up and outcome.reached == -1
-            work = outcome.spent  # the look's, the raise's and the lowering's; one seed's row past it at most
-            assert probed <= launch.probe_budget + work // engine_module.PROBE_PACE + occupied.shape[1]
+            if probe_fills > 1:
+                assert outcome.probed <= engine_module.most_telling(launch.restart, launch.fills) + 1 + 2 * width
+            else:
+                assert probed <= launch.probe_budget + outcome.spent // engine_module.PROBE_PACE + 2 * width
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
         assert_no_marks_left(engine)
         engine.set_cells(ring, np.zeros(len(ring), bool))
