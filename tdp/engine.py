@@ -632,6 +632,14 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         return out
 
     @ti.func
+    def pinned(best, pen: ti.template(), header: ti.template(), cap, g, i, j):
+        """``best``, the lowest candidate of cell (i, j), as its value: 0 at the source, the cap where blocked
+        (eqs. 5 and 10, obstacles before the source)."""
+        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
+            best = broadcast(0.0)
+        return ti.select(blocked_lanes(pen, g, i, j), broadcast(cap), best)
+
+    @ti.func
     def updated(src: ti.template(), pen: ti.template(), header: ti.template(), cap, g, i, j):
         """The new value of cell (i, j) (padded coordinates): eqs. 5 and 10, obstacles before the source.
         min(cap, min over allowed moves of D[Z] + |V - Z|) is a select: ``ti.min`` lowers to LLVM's NaN-aware minnum
@@ -640,9 +648,7 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         for m in ti.static(moves):
             cand = crossing(src[g, i + m.dr, j + m.dc] + move_cost(pen, g, i, j, m), pen, g, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
-        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
-            best = broadcast(0.0)
-        return ti.select(blocked_lanes(pen, g, i, j), broadcast(cap), best)
+        return pinned(best, pen, header, cap, g, i, j)
 
     @ti.func
     def leaning(src: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
@@ -655,9 +661,7 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
             cand = crossing(there + cost, pen, 0, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
             leans |= ti.select(there == value + cost, 1 << k, 0)
-        if i == header[SOURCE_ROW] and j == header[SOURCE_COL]:
-            best = 0.0
-        return ti.select(blocked_lanes(pen, 0, i, j), cap, best), leans
+        return pinned(best, pen, header, cap, 0, i, j), leans
 
     @ti.func
     def successor_move(values: ti.template(), pen: ti.template(), header: ti.template(), cap, g, lane, i, j):
