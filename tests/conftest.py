@@ -28,3 +28,12 @@ def recorded(kernel, name: str, calls: list):
         calls.append(name)
         return kernel(**arguments)
     return call
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """Move the benchmarks' smoke tests to the end of the run and start their scripts now, in the background
+    (``tests/test_benchmarks.py``): they overlap the rest of the suite instead of following it."""
+    smoke = [item for item in items if item.path.name == "test_benchmarks.py"]
+    if smoke:
+        items[:] = [item for item in items if item not in smoke] + smoke
+        smoke[0].module.SMOKE_RUNS.start()
