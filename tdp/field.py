@@ -18,23 +18,32 @@ def check_cap(value: float, name: str) -> float:
 
 
 def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndarray:
-    """An (n, 2) int array of (row, col) cells from a bool mask of the map's shape or a sequence of cells."""
-    array = np.asarray(cells_or_mask)
+    """An (n, 2) int32 array of (row, col) cells, contiguous (as the engine's kernels take them), from a bool mask of
+    the map's shape or a sequence of cells.
+
+    Raises:
+        ValueError: a mask of another shape, anything but (row, col) integer pairs, or a cell outside the map.
+    """
+    try:
+        array = np.asarray(cells_or_mask)
+    except ValueError:  # a ragged sequence
+        raise ValueError(f"{name}: expected a bool mask or (row, col) integer cells, got a ragged sequence") from None
     if array.dtype == bool:
         if array.shape != grid_shape:
             raise ValueError(f"{name}: a mask must have the map's shape {grid_shape}, got {array.shape}")
-        return np.argwhere(array)
+        return np.argwhere(array).astype(np.int32)
     if array.size == 0:
-        return np.zeros((0, 2), np.int64)
-    if not np.issubdtype(array.dtype, np.integer) or array.shape[-1] != 2:
+        return np.zeros((0, 2), np.int32)
+    if array.dtype.kind not in "iu" or array.ndim == 0 or array.shape[-1] != 2:
         raise ValueError(f"{name}: expected a bool mask or (row, col) integer cells, got an array of "
                          f"shape {array.shape} and dtype {array.dtype}")
     cells = array.reshape(-1, 2)
-    inside = (cells[:, 0] >= 0) & (cells[:, 0] < grid_shape[0]) & (cells[:, 1] >= 0) & (cells[:, 1] < grid_shape[1])
+    inside = (cells >= 0) & (cells < grid_shape)
     if not inside.all():
-        raise ValueError(f"{name}: cell {tuple(int(v) for v in cells[~inside][0])} is outside the "
+        outside = cells[~inside.all(axis=1)][0]
+        raise ValueError(f"{name}: cell {tuple(int(v) for v in outside)} is outside the "
                          f"{grid_shape[0]} x {grid_shape[1]} map")
-    return cells
+    return np.ascontiguousarray(cells, np.int32)
 
 
 class DistanceField:
