@@ -2783,6 +2783,8 @@ class Engine:
         (:meth:`cut_short`; :meth:`swept` counts them): the unit of an anytime repair's budget.
         """
         focused = None if focus is None else (int(focus[0]) + PAD, int(focus[1]) + PAD)
+        max_rounds = None if max_rounds is None else min(max_rounds, _NEVER)  # more than any converge takes
+        max_sweeps = min(max_sweeps, _NEVER)
         goal = self._goal.restart if self._goal_moved else self._goal.converge
         self._goal_moved = False
         rounds = max([goal(max_rounds, focused, max_sweeps)] + [layers.converge(max_rounds)

@@ -118,6 +118,17 @@ def test_numpy_integers_are_cells():
     assert field.distance(np.array([0, 4])) == 4.0 and field.successor((np.int8(0), np.int16(1))) == (0, 0)
 
 
+def test_a_round_limit_beyond_32_bits_is_no_limit():
+    """converge(max_rounds=10**20) ended in an OverflowError from the launch's int32 array."""
+    field = tdp.DistanceField(GRID, (0, 0))
+    field.converge()
+    field.set_occupied([(0, 1)])
+    field.converge(max_rounds=10**20)
+    fresh = tdp.DistanceField(tdp.GridMap(field.occupied), (0, 0))
+    fresh.converge()
+    assert not field.pending and np.array_equal(field.distances(), fresh.distances())
+
+
 def test_step_counts_beyond_32_bits_and_returns_at_once_on_a_settled_field():
     """step(2**31) then converge() ended in a TypeError from Taichi; step(3 * 10**9) never returned."""
     field = tdp.DistanceField(GRID, (0, 0))
