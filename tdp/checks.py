@@ -15,12 +15,14 @@ import numpy as np
 Cell = tuple[int, int]
 
 
-def integer(value, name: str, low: int | None = None) -> int:
-    """``value`` as an int if it is an integer (numpy integers included, bools not) >= ``low``."""
+def integer(value, name: str, low: int | None = None, high: int | None = None) -> int:
+    """``value`` as an int if it is an integer (numpy integers included, bools not) >= ``low`` and <= ``high``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise ValueError(f"{name} must be an integer, got {value!r}")
     if low is not None and value < low:
         raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    if high is not None and value > high:
+        raise ValueError(f"{name} must be an integer <= {high}, got {value!r}")
     return int(value)
 
 
@@ -29,14 +31,18 @@ def optional_integer(value, name: str, low: int | None = None) -> int | None:
     return None if value is None else integer(value, name, low)
 
 
-def number(value, name: str, low: float | None = None, *, inclusive: bool = True, finite: bool = True) -> float:
-    """``value`` as a float if it is a real number (not a bool, never NaN) >= ``low`` (> when not inclusive)."""
+def number(value, name: str, low: float | None = None, *, inclusive: bool = True, finite: bool = True,
+           high: float | None = None) -> float:
+    """``value`` as a float if it is a real number (not a bool, never NaN) >= ``low`` (> when not inclusive) and at
+    most ``high``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or math.isnan(value):
         raise ValueError(f"{name} must be a number, got {value!r}")
     if finite and not math.isfinite(value):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     if low is not None and (value < low or (value == low and not inclusive)):
         raise ValueError(f"{name} must be a number {'>=' if inclusive else '>'} {low}, got {value!r}")
+    if high is not None and value > high:
+        raise ValueError(f"{name} must be a number <= {high:g}, got {value!r}")
     return float(value)
 
 

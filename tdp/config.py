@@ -17,6 +17,10 @@ PLANNER_NAMES = {"exact": "exact replanning", "accelerating": "accelerating node
 #: How a backup ends: "evidence" (as soon as the goal layer shows a route to G no longer than the backup's, or
 #: after ||Path|| iterations) or "paper" (after ||Path|| iterations only, section 4.3).
 SWITCH_BACK = ("evidence", "paper")
+#: The largest K, J and budget a config takes: K iterations per move (a million converge any map a robot drives),
+#: J + 1 iterations' pair distances the blockage test keeps (nodes² floats each), an hour a tick (accelerating
+#: nodes iterate until the budget is spent).
+MAX_UPDATES_PER_MOVE, MAX_DETECT_WINDOW, MAX_BUDGET_MS = 10**6, 1000, 3.6e6
 
 @dataclass(frozen=True)
 class NavigatorConfig:
@@ -29,11 +33,14 @@ class NavigatorConfig:
     ``accelerating=False`` of earlier versions is ``planner="plain-dp"``.
     nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
     spacing: lattice spacing s in cells, overriding ``nodes`` when given.
-    vision: DmaxQ / s (ARCHITECTURE §5.2). updates_per_move: K, DP iterations per robot move.
+    vision: DmaxQ / s (ARCHITECTURE §5.2). updates_per_move: K, DP iterations per robot move (at most a million,
+    ``MAX_UPDATES_PER_MOVE``).
     budget_ms: a time budget per tick in milliseconds instead of a fixed K: each tick runs as many DP iterations
     as fit in it, the monitor included (at least one; the number depends on the machine, so runs do too); for the
-    exact planner, how long its repair may run before the robot moves on the layer as far as it got.
-    detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1).
+    exact planner, how long its repair may run before the robot moves on the layer as far as it got. At most an
+    hour (``MAX_BUDGET_MS``).
+    detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1); J at most 1000
+    (``MAX_DETECT_WINDOW``).
     d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
     placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
     nearest the centre), "drop" (left out, the paper) or "nudge" (a free cell within s/4); see
@@ -88,10 +95,12 @@ class NavigatorConfig:
         if self.spacing is not None:
             normalised("spacing", checks.number(self.spacing, "spacing", 1.0))
         normalised("vision", checks.number(self.vision, "vision", 0.0, inclusive=False))
-        normalised("updates_per_move", checks.integer(self.updates_per_move, "updates_per_move", 1))
+        normalised("updates_per_move", checks.integer(self.updates_per_move, "updates_per_move", 1,
+                                                      MAX_UPDATES_PER_MOVE))
         if self.budget_ms is not None:
-            normalised("budget_ms", checks.number(self.budget_ms, "budget_ms", 0.0, inclusive=False))
-        normalised("detect_window", checks.integer(self.detect_window, "detect_window", 1))
+            normalised("budget_ms", checks.number(self.budget_ms, "budget_ms", 0.0, inclusive=False,
+                                                  high=MAX_BUDGET_MS))
+        normalised("detect_window", checks.integer(self.detect_window, "detect_window", 1, MAX_DETECT_WINDOW))
         if self.detect_rise is not None:
             normalised("detect_rise", checks.number(self.detect_rise, "detect_rise", 0.0, inclusive=False))
         check_cap(self.d_max, "d_max")

@@ -78,6 +78,7 @@ PACKED_SETTLE_BAND = 256.0
 TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
+_FLOAT32_MAX = float(np.finfo(np.float32).max)
 #: The key of a tile just settled: nothing pending can lower its cells (a key is a lower bound, here a vacuous one)
 #: until a neighbour's change wakes it with a real key. A tile woken before its turn in a round keeps this, and
 #: waits to the end instead of being due at once (which kept a focused repair from stopping).
@@ -2617,6 +2618,11 @@ def _fitting(shape: tuple[int, int]) -> tuple[int, int]:
     return rows, cols
 
 
+def _float32_cap(cap: float) -> float:
+    """A layer's cap as its float32 values hold it: inf past float32's largest (which no distance reaches)."""
+    return float(cap) if cap <= _FLOAT32_MAX else math.inf
+
+
 def _cells_array(cells) -> np.ndarray:
     """(n, 2) int32, contiguous: how kernels take cells."""
     return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
@@ -2689,10 +2695,10 @@ class Engine:
         self.neighbourhood = stencil.check_neighbourhood(neighbourhood)
         self.corner_cutting = bool(corner_cutting)
         self.goal = (int(goal[0]), int(goal[1]))
-        self.goal_cap = float(goal_cap)
+        self.goal_cap = _float32_cap(goal_cap)
         self._moves = stencil.moves(self.neighbourhood, self.corner_cutting)  # the kernels' move order
         self._move_index = {(m.dr, m.dc): index for index, m in enumerate(self._moves)}
-        self.node_cap = float(node_cap)
+        self.node_cap = _float32_cap(node_cap)
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
 
@@ -2704,7 +2710,9 @@ class Engine:
                              (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap, max_cost)
         self._layers = [self._goal]
         if len(self.nodes):
-            self.radius = int(math.ceil(self.node_cap))
+            # a window reaching past the map on every side holds what a larger one would: the map, walled round
+            reach = max(self.rows, self.cols)
+            self.radius = reach if self.node_cap > reach else int(math.ceil(self.node_cap))
             side = 2 * self.radius + 1
             groups = -(-len(self.nodes) // LANES)
             origins = np.full((groups * LANES, 2), _FAR, np.int32)

@@ -29,6 +29,7 @@ from .nodes import Vertices, place_nodes
 from .readings import NodeReadings
 from .stencil import RobotMoves, chain_moves
 
+MOST_PER_CALL = 1024  # DP iterations a call of the tick's iterate runs at most (iterations_within)
 
 
 class Navigator:
@@ -310,11 +311,14 @@ def _lattice(grid: GridMap, config: NavigatorConfig) -> tuple[np.ndarray, float]
 
 
 def iterations_within(iterate: Callable[[int], None], k: int, budget_ms: float | None) -> int:
-    """Run ``iterate(k)`` (K iterations) once without a budget; with ``budget_ms`` one iteration, then as many more
-    as the rate so far says fit in what is left (at most twice the last call's) until no more fit. Returns the
+    """Run ``iterate(k)`` (K iterations) without a budget; with ``budget_ms`` one iteration, then as many more as the
+    rate so far says fit in what is left (at most twice the last call's) until no more fit. At most
+    MOST_PER_CALL iterations a call: each call's samples and pair distances are held at once (an idle layer's
+    iterations cost next to nothing, and a budget of seconds grew a call to 262,144 of them, 1.2 GB). Returns the
     iterations run."""
     if budget_ms is None:
-        iterate(k)
+        for done in range(0, k, MOST_PER_CALL):
+            iterate(min(MOST_PER_CALL, k - done))
         return k
     began, done, k = time.perf_counter(), 0, 1
     while True:
@@ -324,4 +328,4 @@ def iterations_within(iterate: Callable[[int], None], k: int, budget_ms: float |
         left = budget_ms / 1e3 - spent
         if left < spent / done:  # not enough left for one more iteration at the rate so far
             return done
-        k = max(1, min(int(left / (spent / done)), 2 * k))
+        k = max(1, min(int(left / (spent / done)), 2 * k, MOST_PER_CALL))

@@ -8,7 +8,7 @@ import pytest
 
 from tdp.backup import (Backup, BackupState, Follow, Step, after_search, cells_near, cost_from_robot, driven_search,
                         goal_route_wins, iterated, next_step, plan_backup, switched_back, without_route)
-from tdp.navigator import iterations_within
+from tdp.navigator import MOST_PER_CALL, iterations_within
 from tdp.nodes import NodeGraph, Vertices, choose_subgoal
 
 DMAX_Q = 10.0
@@ -165,6 +165,17 @@ def test_iterations_within_a_budget_run_at_least_one_and_no_budget_runs_k():
     done = iterations_within(iterate, 4, 20.0)  # 20 ms: more than one call, each at most twice the last
     assert done == sum(calls) > 1 and calls[0] == 1
     assert all(b <= 2 * a for a, b in zip(calls, calls[1:]))
+
+
+def test_iterations_within_run_at_most_a_call_of_iterations_at_once():
+    """An idle layer's iterations cost next to nothing: a budget of seconds grew a call to 262,144 of them, whose
+    samples and pair distances took 1.2 GB; K = 10**6 took 4.7 GB in one call."""
+    calls = []
+    assert iterations_within(calls.append, 2 * MOST_PER_CALL + 5, None) == 2 * MOST_PER_CALL + 5
+    assert calls == [MOST_PER_CALL, MOST_PER_CALL, 5]
+    calls.clear()
+    done = iterations_within(calls.append, 4, 30.0)  # free iterations: as many calls as 30 ms hold
+    assert done == sum(calls) and max(calls) == MOST_PER_CALL
 
 
 def test_vertex_ids_convert_to_layers_and_cells_in_one_place():

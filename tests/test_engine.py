@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from conftest import recorded
+from reference import assert_distances_match, distances_to
 from tdp import engine as engine_module
 from tdp.engine import LANES, Engine
 
@@ -17,6 +18,24 @@ def random_map(rows, cols, density, seed):
     occupied = np.random.default_rng(seed).random((rows, cols)) < density
     occupied[0, 0] = False
     return occupied
+
+
+@pytest.mark.parametrize("node_cap", [40.0, 1e6, 1e300, math.inf])
+def test_a_node_cap_past_the_map_clips_the_windows_to_it(node_cap):
+    """A node layer is a Dijkstra from its node capped at ``node_cap``: a cap of a million asked Taichi for windows
+    of 2,000,001 cells a side (a RuntimeError from its memory pool); one past float32 warned of an overflow."""
+    occupied = random_map(12, 17, 0.25, 3)
+    nodes = np.array([[5, 7], [11, 16]])
+    occupied[tuple(nodes.T)] = False
+    engine = Engine(occupied, (0, 0), nodes=nodes, node_cap=node_cap)
+    engine.converge()
+    assert engine.radius == (17 if node_cap > 17 else math.ceil(node_cap))
+    cap = np.float32(node_cap) if node_cap < 1e38 else np.float32(np.inf)
+    for k, node in enumerate(nodes):
+        ours, expected = engine.node_distances(k), distances_to(occupied, tuple(node))
+        assert (ours <= cap).all()
+        assert_distances_match(np.where(ours < cap, ours, np.float32(np.inf)), np.where(expected < cap, expected, np.inf),
+                               1e-5)
 
 
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])

@@ -420,6 +420,9 @@ def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelera
 @pytest.mark.parametrize("kwargs, message", [
     ({"nodes": 0}, "nodes"), ({"vision": -1}, "vision"), ({"updates_per_move": 0}, "updates_per_move"),
     ({"detect_window": 0}, "detect_window"), ({"detect_rise": -2}, "detect_rise"), ({"d_max": 0}, "d_max"),
+    ({"detect_window": 10**20}, "detect_window must be an integer <= 1000"),
+    ({"updates_per_move": 10**7}, "updates_per_move must be an integer <= 1000000"),
+    ({"budget_ms": 1e20}, "budget_ms must be a number <= 3.6e\\+06"),
     ({"neighbourhood": 5}, "neighbourhood"), ({"placement": "random"}, "placement"), ({"spacing": 0.5}, "spacing"),
     ({"switch_back": "never"}, "switch_back"),
     ({"planner": "accelerated"}, "planner"), ({"planner": "exact", "predict_ticks": 4}, "predict_ticks"),
@@ -427,6 +430,17 @@ def test_a_box_over_the_robot_where_a_box_stood_at_the_start_is_no_wall(accelera
 def test_invalid_config_raises(kwargs, message):
     with pytest.raises(ValueError, match=message):
         tdp.NavigatorConfig(**{"planner": "accelerating", **kwargs})
+
+
+@pytest.mark.parametrize("planner", ["accelerating", "plain-dp"])
+def test_a_vision_past_the_map_and_k_past_a_call_of_iterations_plan_as_the_map_allows(planner):
+    """vision=1e6 asked Taichi for windows of 175 GB (a RuntimeError from its memory pool): a window is clipped to
+    the map's reach. A tick's K iterations run in calls of at most MOST_PER_CALL (test_backup.py), counted whole."""
+    grid = tdp.GridMap(np.zeros((10, 10), bool))
+    wide = tdp.make_planner(grid, (0, 0), (9, 9), tdp.NavigatorConfig(planner=planner, vision=1e6))
+    assert wide.tick().iterations == 4
+    many = tdp.make_planner(grid, (0, 0), (9, 9), tdp.NavigatorConfig(planner=planner, updates_per_move=3000))
+    assert many.tick().iterations == 3000 and many.engine.iterations == 3000
 
 
 def test_obstacles_move_appear_and_vanish():
