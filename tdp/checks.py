@@ -8,11 +8,20 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
+from pathlib import Path
 
 import numpy as np
 
 #: A grid cell: (row, col).
 Cell = tuple[int, int]
+
+
+def path(value, name: str) -> Path:
+    """``value`` as a Path if it is a str or path-like."""
+    if not isinstance(value, (str, os.PathLike)):
+        raise ValueError(f"{name} must be a file path (a str or a pathlib.Path), got {value!r}")
+    return Path(value)
 
 
 def integer(value, name: str, low: int | None = None, high: int | None = None) -> int:

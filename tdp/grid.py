@@ -247,7 +247,7 @@ def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: floa
         ValueError: an unknown format, a malformed file, ``trinary_costmap=False`` for a map that is not ROS's,
             one of the two inflation parameters without the other.
     """
-    grid = _load(Path(path), unknown_is_free, threshold, checks.flag(trinary_costmap, "trinary_costmap"))
+    grid = _load(checks.path(path, "path"), unknown_is_free, threshold, checks.flag(trinary_costmap, "trinary_costmap"))
     if cost_scaling_factor is None and inflation_radius is None:
         return grid
     return grid.inflate(0, cost_scaling_factor=cost_scaling_factor, inflation_radius=inflation_radius)
@@ -327,7 +327,7 @@ def load_scenarios(path: str | Path, grid: GridMap | None = None) -> list[Proble
     Tolerates CRLF, a missing final newline, and blank lines with any text after them (reading stops at the first
     blank line). With ``grid``, checks that each problem's map size matches and its cells are free.
     """
-    path = Path(path)
+    path = checks.path(path, "path")
     if not path.is_file():
         raise FileNotFoundError(f"scenario file not found: {path}")
     lines = _read_lines(path)

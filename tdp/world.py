@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -104,14 +105,18 @@ class Scenario:
     def __post_init__(self):
         if not isinstance(self.grid, GridMap):
             raise ValueError(f"Scenario grid must be a tdp.GridMap, got {type(self.grid).__name__}")
+        given = self.obstacles
+        self.obstacles = list(given) if isinstance(given, Iterable) and not isinstance(given, Obstacle) else [given]
         if not all(isinstance(o, Obstacle) for o in self.obstacles):
-            raise ValueError("Scenario obstacles must be tdp.Obstacle objects")
+            raise ValueError(f"Scenario obstacles must be a list of tdp.Obstacle objects, got {given!r}")
         occupied = self.occupancy(0)
         for name in ("start", "goal"):
             cell = self.grid.check_free_cell(getattr(self, name), name)
             if occupied[cell]:
                 raise ValueError(f"{name} {cell} is covered by an obstacle at tick 0")
             setattr(self, name, cell)
+        if not isinstance(self.target_waypoints, Iterable):
+            raise ValueError(f"Scenario target_waypoints must be a list of cells, got {self.target_waypoints!r}")
         self.target_waypoints = [self.grid.check_free_cell(w, "target waypoint") for w in self.target_waypoints]
         self.target_speed = checks.number(self.target_speed, "target_speed (cells per tick)", 0.0, inclusive=False)
         if not isinstance(self.name, str) or not isinstance(self.description, str):

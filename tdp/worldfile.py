@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 import yaml
 
+from . import checks
 from .grid import GridMap, load_map, rectangles
 from .world import Obstacle, Scenario
 
@@ -102,7 +103,7 @@ class _Reader:
 
 def load_world(path: str | Path) -> Scenario:
     """Read a world file (see the module's documentation) into a Scenario."""
-    path = Path(path)
+    path = checks.path(path, "path")
     if not path.is_file():
         raise FileNotFoundError(f"world file not found: {path}")
     try:
