@@ -70,7 +70,8 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
     (BASE + "tick_s: 0\n", r"tick_s: expected a number > 0"),
     ("map: nowhere.yaml\nstart: [1, 1]\ngoal: [2, 2]\n", r"map.file: no such map file"),
     (BASE + "target: {waypoints: [[10, 11]]}\n", r"target waypoint \(10, 11\) is on an obstacle"),
-    ("- just\n- a list\n", r"expected a mapping"),
+    ("- just\n- a list\n", r"the file: expected a mapping"),
+    ("root:x:0:0:root:/root:/bin/bash " * 40 + "\n", r"the file: expected a mapping, got 'root:x:0:0:.{30,60}\.\.\.$"),
     ("map: [unclosed\n", r"not valid YAML"),
 ])
 def test_mistakes_in_a_world_file_name_the_file_and_the_key(tmp_path, text, message):
