@@ -17,6 +17,13 @@ import numpy as np
 Cell = tuple[int, int]
 
 
+def shown(value, most: int = 60) -> str:
+    """``value``'s repr for an error message, cut to ``most`` characters (a text file read as a world file is one
+    long string)."""
+    text = repr(value)
+    return text if len(text) <= most else text[:most - 3] + "..."
+
+
 def path(value, name: str) -> Path:
     """``value`` as a Path if it is a str or path-like."""
     if not isinstance(value, (str, os.PathLike)):

@@ -419,8 +419,12 @@ def _load_ros(path: Path, unknown_is_free: bool, trinary_costmap: bool) -> GridM
     image_path = Path(meta["image"])
     if not image_path.is_absolute():
         image_path = path.parent / image_path
-    if not image_path.is_file():
-        raise FileNotFoundError(f"{path}: image {meta['image']!r} not found (looked at {image_path})")
+    try:
+        found = image_path.is_file()
+    except OSError as error:  # a name too long for the file system, say
+        raise ValueError(f"{path}: image {checks.shown(meta['image'])}: {error.strerror}") from None
+    if not found:
+        raise FileNotFoundError(f"{path}: image {checks.shown(meta['image'])} not found (looked at {image_path})")
     values = ros_occupancy(image_path, meta["mode"], meta["negate"], meta["occupied_thresh"], meta["free_thresh"])
     if not trinary_costmap:
         return costmap_grid(occupancy_costmap(values), meta["resolution"], meta["origin"],

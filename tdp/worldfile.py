@@ -54,13 +54,6 @@ _OBSTACLE = {"cells": {"box", "waypoints", "speed", "appear_at", "vanish_at"},
              "metres": {"box", "waypoints", "speed", "appear_s", "vanish_s"}}
 
 
-def _shown(value, most: int = 60) -> str:
-    """``value``'s repr for an error message, cut to ``most`` characters (a text file read as a world is one long
-    string)."""
-    text = repr(value)
-    return text if len(text) <= most else text[:most - 3] + "..."
-
-
 class _Reader:
     """Reads one world file's values, each error naming the file and the key."""
 
@@ -72,7 +65,7 @@ class _Reader:
 
     def mapping(self, value, key: str, allowed: set[str]) -> dict:
         if not isinstance(value, dict):
-            self.fail(key, f"expected a mapping, got {_shown(value)}")
+            self.fail(key, f"expected a mapping, got {checks.shown(value)}")
         unknown = sorted(set(value) - allowed)
         if unknown:
             self.fail(f"{key}.{unknown[0]}" if key else unknown[0],
@@ -81,14 +74,14 @@ class _Reader:
 
     def number(self, value, key: str, low: float | None = None, strict: bool = False) -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            self.fail(key, f"expected a finite number, got {_shown(value)}")
+            self.fail(key, f"expected a finite number, got {checks.shown(value)}")
         if low is not None and (value < low or (strict and value == low)):
-            self.fail(key, f"expected a number {'>' if strict else '>='} {low}, got {_shown(value)}")
+            self.fail(key, f"expected a number {'>' if strict else '>='} {low}, got {checks.shown(value)}")
         return float(value)
 
     def integer(self, value, key: str, low: int = 0) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or value < low:
-            self.fail(key, f"expected an integer >= {low}, got {_shown(value)}")
+            self.fail(key, f"expected an integer >= {low}, got {checks.shown(value)}")
         return value
 
     def numbers(self, value, key: str, count: int, units: str, shape: str) -> tuple:
@@ -97,7 +90,7 @@ class _Reader:
             isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in value)
         if not ok or (units == "cells" and not all(isinstance(v, int) for v in value)):
             kind = "integers" if units == "cells" else "numbers"
-            self.fail(key, f"expected {shape} ({kind}), got {_shown(value)}")
+            self.fail(key, f"expected {shape} ({kind}), got {checks.shown(value)}")
         return tuple(value) if units == "cells" else tuple(float(v) for v in value)
 
     def pair(self, value, key: str, units: str) -> tuple:
@@ -124,7 +117,7 @@ def load_world(path: str | Path) -> Scenario:
             read.fail(key, "missing")
     units = data.get("units", "cells")
     if units not in UNITS:
-        read.fail("units", f"expected one of {UNITS}, got {_shown(units)}")
+        read.fail("units", f"expected one of {UNITS}, got {checks.shown(units)}")
     tick_s = read.number(data.get("tick_s", 0.2), "tick_s", 0.0, strict=True)
     grid, source = _map(read, data["map"], path.parent)
     place = _Placement(read, grid, units, tick_s)
@@ -148,7 +141,7 @@ def load_world(path: str | Path) -> Scenario:
 def _list(read: _Reader, data: dict, key: str, prefix: str = "") -> list:
     value = data.get(key, [])
     if not isinstance(value, list):
-        read.fail(prefix + key, f"expected a list, got {_shown(value)}")
+        read.fail(prefix + key, f"expected a list, got {checks.shown(value)}")
     return value
 
 
@@ -163,7 +156,7 @@ def _map(read: _Reader, value, folder: Path) -> tuple[GridMap, dict]:
         for key in ("unknown_is_free", "trinary_costmap"):
             if key in spec:
                 if not isinstance(spec[key], bool):
-                    read.fail(f"map.{key}", f"expected true or false, got {_shown(spec[key])}")
+                    read.fail(f"map.{key}", f"expected true or false, got {checks.shown(spec[key])}")
                 options[key] = spec[key]
         if "threshold" in spec:
             options["threshold"] = read.number(spec["threshold"], "map.threshold", 0.0, strict=True)
@@ -188,7 +181,7 @@ def _map(read: _Reader, value, folder: Path) -> tuple[GridMap, dict]:
         occupied[max(r0, 0):max(r1, 0), max(c0, 0):max(c1, 0)] = True
     origin = spec.get("origin", [0.0, 0.0, 0.0])
     if not (isinstance(origin, list) and len(origin) in (2, 3)):
-        read.fail("map.origin", f"expected [x, y] or [x, y, yaw], got {_shown(origin)}")
+        read.fail("map.origin", f"expected [x, y] or [x, y, yaw], got {checks.shown(origin)}")
     grid = GridMap(occupied, read.number(spec.get("resolution", 1.0), "map.resolution", 0.0, strict=True),
                    tuple(read.number(v, "map.origin") for v in origin))
     return grid, None

@@ -193,6 +193,13 @@ def test_missing_files_raise_file_not_found(tmp_path):
         tdp.load_map(tmp_path / "y.yaml")
 
 
+def test_an_image_name_too_long_for_the_file_system_is_a_clear_error(tmp_path):
+    """The image's is_file() raised the file system's OSError (name too long), and the message held the whole name."""
+    write(tmp_path / "y.yaml", YAML.replace("m.pgm", "y" * 3000 + ".pgm"))
+    with pytest.raises(ValueError, match=r"y.yaml: image 'y{50,60}\.\.\.: File name too long"):
+        tdp.load_map(tmp_path / "y.yaml")
+
+
 def test_truncated_pgm_is_a_clear_error(tmp_path, data_dir):
     data = (data_dir / "nav2_testmap" / "testmap.pgm").read_bytes()
     (tmp_path / "m.pgm").write_bytes(data[:40])
