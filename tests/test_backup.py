@@ -168,7 +168,7 @@ def test_iterations_within_a_budget_run_at_least_one_and_no_budget_runs_k():
 
 
 def test_iterations_within_run_at_most_a_call_of_iterations_at_once():
-    """An idle layer's iterations cost next to nothing: a budget of seconds grew a call to 262,144 of them, whose
+    """An idle layer's iterations cost next to nothing: an absurd budget grew a call to 262,144 of them, whose
     samples and pair distances took 1.2 GB; K = 10**6 took 4.7 GB in one call."""
     calls = []
     assert iterations_within(calls.append, 2 * MOST_PER_CALL + 5, None) == 2 * MOST_PER_CALL + 5
