@@ -41,9 +41,14 @@ def _ratio(metrics: dict) -> str:
     return "-" if metrics["ratio"] is None else f"{metrics['ratio']:.3f}"
 
 
+def _oracle_m(metrics: dict) -> str:
+    """The oracle's length, "-" where the episode has none (``sim.episode.grown_oracle``)."""
+    return "-" if metrics["oracle_length_m"] is None else f"{metrics['oracle_length_m']:.2f}"
+
+
 def _summary(metrics: dict) -> str:
     return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
-            f"oracle {metrics['oracle_length_m']:.2f} m, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
+            f"oracle {_oracle_m(metrics)} m, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m (mean {metrics['mean_clearance_m']:.3f}); planner "
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
@@ -81,7 +86,7 @@ def compare(args: argparse.Namespace) -> int:
           "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for kind, m in rows:
-        print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {m['oracle_length_m']:.2f} "
+        print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {_oracle_m(m)} "
               f"| {_ratio(m)} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))

@@ -86,14 +86,28 @@ def connect(gui: bool) -> int:
     return client
 
 
-def inflated_scenario(scenario: tdp.Scenario, cells: int) -> tdp.Scenario:
-    """The scenario as the planner sees it: static map inflated by a disk, boxes grown by ``cells`` on each side."""
+def inflated_scenario(scenario: tdp.Scenario, margin_cells: float) -> tdp.Scenario:
+    """The scenario as the planner sees it: the static map inflated by a disk of ``margin_cells`` (as the run's),
+    boxes grown by that rounded up to whole cells on each side."""
+    cells = math.ceil(margin_cells)
     boxes = [tdp.Obstacle(box=(o.box[0] - cells, o.box[1] - cells, o.box[2] + cells, o.box[3] + cells),
                           waypoints=[(r - cells, c - cells) for r, c in o.waypoints], speed=o.speed,
                           appear_at=o.appear_at, vanish_at=o.vanish_at) for o in scenario.obstacles]
-    return tdp.Scenario(scenario.grid.inflate(cells), scenario.start, scenario.goal, obstacles=boxes,
+    return tdp.Scenario(scenario.grid.inflate(margin_cells), scenario.start, scenario.goal, obstacles=boxes,
                         target_waypoints=scenario.target_waypoints, target_speed=scenario.target_speed,
                         name=scenario.name, max_ticks=scenario.max_ticks)
+
+
+def grown_oracle(scenario: tdp.Scenario, config: tdp.NavigatorConfig, margin_cells: float,
+                 max_ticks: int) -> dict | None:
+    """The oracle's run (:func:`tdp.simulate.oracle_run`) on :func:`inflated_scenario`, or None where that has no
+    room for the start or the goal (a box's growth rounded up to whole cells on a coarse map covers one the run's
+    exact margin leaves free): the episode then has no oracle, rather than losing its metrics at the end."""
+    try:
+        grown = inflated_scenario(scenario, margin_cells)
+    except ValueError:
+        return None
+    return oracle_run(grown, config, max_ticks)
 
 
 class _Run:
@@ -265,21 +279,20 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
         reached = run.reached()
     finally:
         p.disconnect(physicsClientId=client)
-    cells = math.ceil(sim.inflate_m / run.cell_m)
-    oracle = oracle_run(inflated_scenario(scenario, cells), config, max_ticks)
-    oracle_m = oracle["length"] * run.cell_m
+    oracle = grown_oracle(scenario, config, sim.inflate_m / run.cell_m, max_ticks)
+    oracle_m = None if oracle is None else oracle["length"] * run.cell_m
     turn_point, switch_back_point = run.landmark_points()
     return {
         "scenario": scenario.name, "planner": config.planner, "updates_per_move": config.updates_per_move,
         "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick,
         "path_length_m": run.length_m, "oracle_length_m": oracle_m,
-        "ratio": run.length_m / oracle_m if oracle["reached"] and oracle_m > 0 else None,
+        "ratio": run.length_m / oracle_m if oracle and oracle["reached"] and oracle_m > 0 else None,
         "contacts": run.contact_steps,
         "min_clearance_m": run.min_clearance, "mean_clearance_m": float(np.mean(run.clearances or [math.nan])),
         "detections": detection_records(run.results),
         "planner_ms_per_tick": timing_summary(run.planner_s),
         "trace": run.trace, "modes": [result.mode for result in run.results], "nodes": run.navigator.nodes.tolist(),
         "turn_point": turn_point, "switch_back_point": switch_back_point,
-        "oracle_trajectory": oracle["trajectory"], "config": config.to_dict(),
+        "oracle_trajectory": [] if oracle is None else oracle["trajectory"], "config": config.to_dict(),
         "sim": {**asdict(sim), "cell_m": run.cell_m, "tick_s": run.tick_s},
     }

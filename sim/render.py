@@ -43,7 +43,7 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
                 lw=1, alpha=0.7)
         ax.add_patch(box_patch(plt, obstacle.footprint(ticks[0]), fill=False, ec="tab:brown", ls="--"))
         ax.add_patch(box_patch(plt, obstacle.footprint(ticks[-1]), color="tab:brown", alpha=0.6))
-    oracle = np.array(metrics["oracle_trajectory"])
+    oracle = np.array(metrics["oracle_trajectory"]).reshape(-1, 2)
     ax.plot(oracle[:, 1], oracle[:, 0], ":", color="0.35", lw=1.3, label="oracle (grid)")
     trace = metrics["trace"]
     for (x0, y0, _), (x1, y1, mode) in zip(trace, trace[1:]):
@@ -58,7 +58,8 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
             ax.annotate("A" if name == "turn_point" else "B", (c, r), xytext=(6, -6), textcoords="offset points",
                         fontsize=13, weight="bold")
     ax.set_title(f"PyBullet {metrics['scenario']}, {planner_label(metrics['config'])}: "
-                 f"{metrics['path_length_m']:.2f} m (oracle {metrics['oracle_length_m']:.2f} m), "
+                 f"{metrics['path_length_m']:.2f} m (oracle "
+                 f"{'none' if metrics['oracle_length_m'] is None else format(metrics['oracle_length_m'], '.2f')} m), "
                  f"contacts {metrics['contacts']}", fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
     return save_figure(fig, out)

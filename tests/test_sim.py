@@ -109,6 +109,24 @@ def test_every_scenario_reaches_the_goal_in_pybullet_without_contact(name):
     assert 0.8 < metrics["ratio"] < 1.3
 
 
+def test_a_coarse_map_keeps_the_episodes_metrics_where_its_oracle_has_no_room():
+    """On a map of 1 m cells the run grows obstacles by 0.25 m, which leaves a cell beside a wall or a box free; the
+    oracle grew them by whole cells, found the start on an obstacle and raised a ValueError once the robot had driven
+    the whole episode, its metrics lost. The oracle now grows the walls by the run's margin (here: it has room) and
+    the boxes by whole cells (here: a box beside the goal leaves it none: no oracle, the metrics kept)."""
+    occupied = np.zeros((12, 14), bool)
+    occupied[1:3, 7:10] = True  # a wall beside the start
+    grid = tdp.GridMap(occupied, resolution=1.0)
+    walled = tdp.Scenario(grid, (2, 10), (9, 3), max_ticks=60, tick_s=1.0)
+    metrics = run_episode(walled)
+    assert metrics["reached"] and metrics["oracle_length_m"] > 0 and metrics["ratio"] >= 0.99
+    boxed = tdp.Scenario(grid, (2, 10), (9, 3), obstacles=[tdp.Obstacle(box=(10, 2, 12, 5))], max_ticks=60,
+                         tick_s=1.0)
+    metrics = run_episode(boxed)
+    assert metrics["reached"] and metrics["oracle_length_m"] is None and metrics["ratio"] is None
+    assert metrics["path_length_m"] > 0 and metrics["oracle_trajectory"] == []
+
+
 @pytest.mark.parametrize("planner", ["exact", "accelerating"])
 def test_nav2s_inflation_cost_round_every_obstacle_keeps_the_robot_clearer_at_a_little_more_length(planner):
     """A box closes the route (sudden-blockage): with the inflation cost around walls and boxes the robot keeps
