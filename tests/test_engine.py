@@ -34,8 +34,8 @@ def test_a_node_cap_past_the_map_clips_the_windows_to_it(node_cap):
     for k, node in enumerate(nodes):
         ours, expected = engine.node_distances(k), distances_to(occupied, tuple(node))
         assert (ours <= cap).all()
-        assert_distances_match(np.where(ours < cap, ours, np.float32(np.inf)), np.where(expected < cap, expected, np.inf),
-                               1e-5)
+        assert_distances_match(np.where(ours < cap, ours, np.float32(np.inf)),
+                               np.where(expected < cap, expected, np.inf), 1e-5)
 
 
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
