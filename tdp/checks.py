@@ -24,6 +24,18 @@ def shown(value, most: int = 60) -> str:
     return text if len(text) <= most else text[:most - 3] + "..."
 
 
+def yaml_text_hint(value) -> str:
+    """A hint for a number that YAML read as text (YAML 1.1 wants a dot in a float: ``1e-3`` is a string, ``1.0e-3``
+    a number) when ``value`` is such a string, for a file's error message; else ""."""
+    if isinstance(value, str):
+        try:
+            float(value)
+        except ValueError:
+            return ""
+        return f" (YAML reads {value} as text: write it with a dot and a signed exponent, as 1.0e+3)"
+    return ""
+
+
 def path(value, name: str) -> Path:
     """``value`` as a Path if it is a str or path-like."""
     if not isinstance(value, (str, os.PathLike)):

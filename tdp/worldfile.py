@@ -74,7 +74,7 @@ class _Reader:
 
     def number(self, value, key: str, low: float | None = None, strict: bool = False) -> float:
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-            self.fail(key, f"expected a finite number, got {checks.shown(value)}")
+            self.fail(key, f"expected a finite number, got {checks.shown(value)}{checks.yaml_text_hint(value)}")
         if low is not None and (value < low or (strict and value == low)):
             self.fail(key, f"expected a number {'>' if strict else '>='} {low}, got {checks.shown(value)}")
         return float(value)

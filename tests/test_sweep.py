@@ -92,6 +92,10 @@ def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
     ("worlds: [{map: m.txt, start: [1, 1], goal: [1, 2]}]\nplanners: [{planner: oracle}]", "m.txt"),
     ("worlds: [{scenario: static}]\nplanners: [{planner: oracle}]\nextra: 1", "unknown key 'extra'"),
     ("worlds: [{scenario: static\n", "not valid YAML"),
+    ("worlds: [{family: rooms, seeds: {count: 10000000000}}]\nplanners: [{planner: oracle}]",
+     "worlds[0].seeds.count must be an integer <= 100000"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: exact, budget_ms: 1e-1}]",
+     "budget_ms must be a number, got '1e-1' (YAML reads 1e-1 as text"),
 ])
 def test_a_bad_spec_is_a_value_error_naming_the_file_and_the_entry(tmp_path, text, words):
     path = spec_file(tmp_path, text)

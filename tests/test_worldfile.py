@@ -68,6 +68,7 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
     (BASE + "obstacles:\n  - box: [5, 5, 7, 7]\n    appear_s: 3\n", r"obstacles\[0\].appear_s: unknown key"),
     (BASE + "units: feet\n", r"units: expected one of"),
     (BASE + "tick_s: 0\n", r"tick_s: expected a number > 0"),
+    (BASE + "tick_s: 1e-1\n", r"tick_s: expected a finite number, got '1e-1' \(YAML reads 1e-1 as text"),
     ("map: nowhere.yaml\nstart: [1, 1]\ngoal: [2, 2]\n", r"map.file: no such map file"),
     (BASE + "target: {waypoints: [[10, 11]]}\n", r"target waypoint \(10, 11\) is on an obstacle"),
     ("- just\n- a list\n", r"the file: expected a mapping"),

@@ -60,6 +60,8 @@ CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "plan
 #: The fields the exact planner reads.
 EXACT_FIELDS = STENCIL_FIELDS + ("d_max", "budget_ms")
 WORLD_KINDS = ("family", "scenario", "world", "map")
+#: The most seeds one entry of ``worlds`` may count (seeds: {first, count}): each is a world kept in the spec's list.
+MAX_SEEDS = 100_000
 
 
 @dataclass(frozen=True)
@@ -194,7 +196,8 @@ def _seeds(value, where: str) -> list[int]:
     if isinstance(value, dict):
         _only(value, ("first", "count"), f"{where}.seeds")
         first = checks.integer(value.get("first", 0), f"{where}.seeds.first", 0)
-        return list(range(first, first + checks.integer(value.get("count"), f"{where}.seeds.count", 1)))
+        count = checks.integer(value.get("count"), f"{where}.seeds.count", 1, MAX_SEEDS)
+        return list(range(first, first + count))
     return [checks.integer(s, f"{where}.seeds", 0) for s in _listed(value)]
 
 
@@ -311,7 +314,8 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
         try:
             config = NavigatorConfig(planner=config_planner(planner), **dict(zip(names, values))).to_dict()
         except ValueError as error:
-            raise ValueError(f"{where} ({planner}): {error}") from None
+            hint = next((hint for hint in map(checks.yaml_text_hint, values) if hint), "")
+            raise ValueError(f"{where} ({planner}): {error}{hint}") from None
         runs.append((planner, {k: config[k] for k in allowed}, max_size))
     return runs, names
 
