@@ -171,7 +171,7 @@ def costmap_grid(costmap: np.ndarray, resolution: float = 1.0, origin: tuple[flo
     if costmap.ndim != 2 or not np.issubdtype(costmap.dtype, np.integer):
         raise ValueError(f"costmap must be a 2-D integer array, got {costmap.dtype} of shape {costmap.shape}")
     if costmap.size and (costmap.min() < 0 or costmap.max() > 255):
-        raise ValueError(f"costmap values must be 0-255, got {int(costmap.min())}-{int(costmap.max())}")
+        raise ValueError(f"costmap values must be 0-255, got values from {int(costmap.min())} to {int(costmap.max())}")
     occupied = (costmap == 253) | (costmap == 254) | ((costmap == 255) & (not unknown_is_free))
     return GridMap(occupied, resolution, origin, costmap_cost(np.where(costmap > 252, 0, costmap)))
 
