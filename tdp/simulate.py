@@ -21,7 +21,8 @@ from .world import Scenario, box_distance
 @dataclass
 class Episode:
     """Metrics of one run (ARCHITECTURE §6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
-    max; the kernels are compiled in the setup phase, before the first tick)."""
+    max; the kernels are compiled in the setup phase, before the first tick). ``ratio``: the length over the
+    oracle's, nan unless both reached the goal."""
 
     scenario: str
     config: dict
@@ -163,6 +164,14 @@ def _progress(name: str) -> Callable[[int, tuple[int, int]], None]:
     return report
 
 
+def _ratio(record: dict, oracle_record: dict) -> float:
+    """The length travelled over the oracle's: nan unless both reached the goal (as a sweep's tables have it), 1
+    where both reached it without moving."""
+    if not (record["reached"] and oracle_record["reached"]):
+        return math.nan
+    return record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
+
+
 def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -> Episode:
     results = record["results"]
     detections = detection_records(results)
@@ -179,7 +188,7 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
         distances = [box_distance(cell, obstacle.footprint(tick)) for tick, cell in enumerate(record["trajectory"])
                      if obstacle.present(tick)]
         closest = min(distances) if distances else None
-    ratio = record["length"] / oracle_record["length"] if oracle_record["length"] > 0 else 1.0
+    ratio = _ratio(record, oracle_record)
     phases = dict.fromkeys(name for r in results for name in r.timings)
     timings = {name: timing_summary([r.timings.get(name, 0.0) for r in results]) for name in phases}
     timings["total"] = timing_summary([sum(r.timings.values()) for r in results])

@@ -443,6 +443,19 @@ def test_a_vision_past_the_map_and_k_past_a_call_of_iterations_plan_as_the_map_a
     assert many.tick().iterations == 3000 and many.engine.iterations == 3000
 
 
+@pytest.mark.parametrize("planner", ["exact", "accelerating"])
+def test_an_episode_that_cannot_reach_its_goal_has_no_ratio(planner):
+    """A wall seals the goal off: the ratio read 1.000 (0 cells over the oracle's 0), as if the robot had done as
+    well as the oracle; it is nan unless both reached, as in a sweep's tables."""
+    occupied = np.zeros((20, 20), bool)
+    occupied[:, 10] = True
+    episode = tdp.simulate(tdp.Scenario(tdp.GridMap(occupied), (5, 2), (5, 17), max_ticks=15),
+                           tdp.NavigatorConfig(planner=planner))
+    assert not episode.reached and math.isnan(episode.ratio)
+    still = tdp.simulate(tdp.Scenario(tdp.GridMap(occupied), (5, 2), (5, 2), max_ticks=5))
+    assert still.reached and still.ratio == 1.0
+
+
 def test_obstacles_move_appear_and_vanish():
     box = tdp.Obstacle(box=(0, 0, 2, 3), waypoints=[(0, 4), (4, 4)], speed=0.5, appear_at=2, vanish_at=20)
     assert not box.present(1) and box.present(2) and not box.present(20)
