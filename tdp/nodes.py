@@ -18,6 +18,9 @@ def spacing_for(shape: tuple[int, int], count: int) -> float:
     """The spacing s (cells) of a uniform lattice of about ``count`` nodes on a map of ``shape``."""
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise ValueError(f"nodes must be a positive integer, got {count!r}")
+    if count > shape[0] * shape[1]:
+        raise ValueError(f"nodes={count} is more than the {shape[0]} x {shape[1]} map's cells: a lattice spacing needs "
+                         f"at least one cell (at most {shape[0] * shape[1]} nodes)")
     return math.sqrt(shape[0] * shape[1] / count)
 
 

@@ -95,6 +95,8 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
     (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), obstacles=5), "obstacles must be a list of tdp.Obstacle"),
     (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), target_waypoints=5), "target_waypoints must be a list of cells"),
     (lambda: tdp.load_map(5), "path must be a file path"),
+    (lambda: tdp.Navigator(tdp.GridMap(np.zeros((5, 7), bool)), (0, 0), (4, 6), tdp.NavigatorConfig(
+        planner="accelerating", nodes=36)), "nodes=36 is more than the 5 x 7 map's cells"),
     (lambda: tdp.costmap_grid(np.full((5, 5), -5)), "costmap values must be 0-255, got values from -5 to -5"),
     (lambda: tdp.load_world(None), "path must be a file path"),
     (lambda: tdp.load_scenarios(3.5), "path must be a file path"),
