@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import tempfile
 from pathlib import Path
@@ -108,9 +109,11 @@ def output_folder(path: str | Path, option: str = "--out") -> Path:
 
 
 def save_json(payload: dict, path: Path) -> Path:
-    """Write ``payload`` as JSON at ``path``; if that fails (the folder vanished, the disk filled), write it to a
-    temporary file instead and say so on stderr: a finished run's results are never lost. Returns the file."""
-    text = json.dumps(payload, indent=1)
+    """Write ``payload`` as JSON at ``path``, a number that is not finite (a ratio with no oracle, the clearance of a
+    run that never moved) as null - NaN and Infinity are not JSON, and other readers refuse them; if writing fails
+    (the folder vanished, the disk filled), write it to a temporary file instead and say so on stderr: a finished
+    run's results are never lost. Returns the file."""
+    text = json.dumps(_finite(payload), indent=1, allow_nan=False)
     try:
         path.write_text(text)
         return path
@@ -119,3 +122,14 @@ def save_json(payload: dict, path: Path) -> Path:
         fallback.write_text(text)
         print(f"warning: could not write {path} ({error.strerror}); the results are in {fallback}", file=sys.stderr)
         return fallback
+
+
+def _finite(value):
+    """``value`` with every float that is not finite, however deep in dicts, lists and tuples, replaced by None."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(item) for item in value]
+    return value

@@ -1,5 +1,6 @@
 """Bad and unusual input: each case here was silently wrong, a traceback or a hang before, and is now a clear
 ValueError naming what was wrong, or the right answer."""
+import json
 import struct
 import subprocess
 import sys
@@ -202,6 +203,14 @@ def test_results_that_cannot_be_written_where_asked_are_kept_elsewhere(tmp_path,
     assert saved != gone / "metrics.json" and '"ratio": 1.0' in saved.read_text()
     assert str(saved) in capsys.readouterr().err
     saved.unlink()
+
+
+def test_results_are_strict_json_with_null_for_numbers_that_are_not_finite(tmp_path):
+    """metrics.json held NaN (a ratio with no oracle) and Infinity (a run that never moved), which are not JSON."""
+    saved = save_json({"ratio": float("nan"), "clearance": float("inf"), "runs": [{"x": float("-inf")}], "ok": 1.5},
+                      tmp_path / "metrics.json")
+    strict = json.loads(saved.read_text(), parse_constant=lambda name: pytest.fail(f"{name} in the JSON"))
+    assert strict == {"ratio": None, "clearance": None, "runs": [{"x": None}], "ok": 1.5}
 
 
 def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_of_them_is_an_error(tmp_path):
