@@ -256,8 +256,9 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
                 sim: SimConfig = SimConfig(), gui: bool = False, progress: bool = False,
                 frames: list | None = None) -> dict:
     """Run ``scenario`` in PyBullet and return its metrics (lengths in metres, times in seconds). With ``frames``
-    (a list), the simulator's own camera looks down on the world every ``sim.frame_every`` ticks and each picture
-    (an (H, W, 3) uint8 array) is appended to it."""
+    (a list), the simulator's own camera looks down on the world every ``sim.frame_every`` ticks and at the end
+    (a run that starts at its goal has that picture alone), and each picture (an (H, W, 3) uint8 array) is appended
+    to it."""
     client = connect(gui)
     try:
         run = _Run(scenario, config, sim, client)
@@ -277,6 +278,8 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
                       f"{result.mode}", file=sys.stderr, flush=True)
         wall_s = time.perf_counter() - began
         reached = run.reached()
+        if camera and (tick == 0 or (tick - 1) % sim.frame_every):  # the last state, where no picture shows it
+            frames.append(camera.picture())
     finally:
         p.disconnect(physicsClientId=client)
     oracle = grown_oracle(scenario, config, sim.inflate_m / run.cell_m, max_ticks)

@@ -109,6 +109,14 @@ def test_every_scenario_reaches_the_goal_in_pybullet_without_contact(name):
     assert 0.8 < metrics["ratio"] < 1.3
 
 
+def test_a_run_that_starts_at_its_goal_has_one_picture():
+    """No tick, so no picture: compare --animate ended in an IndexError from the animation's first frame."""
+    frames = []
+    grid = tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1)
+    metrics = run_episode(tdp.Scenario(grid, (5, 5), (5, 5)), frames=frames)
+    assert metrics["ticks"] == 0 and metrics["reached"] and len(frames) == 1 and frames[0].std() > 10
+
+
 def test_a_coarse_map_keeps_the_episodes_metrics_where_its_oracle_has_no_room():
     """On a map of 1 m cells the run grows obstacles by 0.25 m, which leaves a cell beside a wall or a box free; the
     oracle grew them by whole cells, found the start on an obstacle and raised a ValueError once the robot had driven
@@ -193,8 +201,8 @@ def test_cli_errors_are_one_line(args, message, monkeypatch):
 
 
 def test_camera_frames_and_the_side_by_side_animation(tmp_path):
-    """--animate: the simulator's own camera looks down on the world (headless), one picture every second tick;
-    compare writes the three planners' runs side by side as a GIF."""
+    """--animate: the simulator's own camera looks down on the world (headless), one picture every second tick and
+    one at the end; compare writes the three planners' runs side by side as a GIF."""
     done = subprocess.run([sys.executable, "-m", "sim", "compare", "--scenario", "static", "--animate", "--out",
                            str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
@@ -204,7 +212,7 @@ def test_camera_frames_and_the_side_by_side_animation(tmp_path):
     kinds = ("exact", "accelerating", "plain-dp")
     ticks = max(json.loads((tmp_path / f"{kind}.json").read_text())["ticks"] for kind in kinds)
     with Image.open(tmp_path / "animation.gif") as gif:
-        assert gif.n_frames == -(-ticks // 2) and gif.size == (3 * 360, 360 + 18)
+        assert gif.n_frames == ticks // 2 + 1 and gif.size == (3 * 360, 360 + 18)
         gif.seek(0)
         first = np.asarray(gif.convert("RGB"), float)
         gif.seek(gif.n_frames - 1)
