@@ -136,7 +136,7 @@ class Spec:
 
 def load_spec(path: str | Path) -> Spec:
     """Read and check a sweep spec; ValueError names the file, the entry and what is wrong with it."""
-    path = Path(path)
+    path = checks.path(path, "path")
     try:
         text = path.read_text()
     except FileNotFoundError:
