@@ -106,9 +106,9 @@ class Scenario:
         if not isinstance(self.grid, GridMap):
             raise ValueError(f"Scenario grid must be a tdp.GridMap, got {type(self.grid).__name__}")
         given = self.obstacles
-        self.obstacles = list(given) if isinstance(given, Iterable) and not isinstance(given, Obstacle) else [given]
+        self.obstacles = list(given) if isinstance(given, Iterable) else [given]
         if not all(isinstance(o, Obstacle) for o in self.obstacles):
-            raise ValueError(f"Scenario obstacles must be a list of tdp.Obstacle objects, got {given!r}")
+            raise ValueError(f"Scenario obstacles must be a list of tdp.Obstacle objects, got {checks.shown(given)}")
         occupied = self.occupancy(0)
         for name in ("start", "goal"):
             cell = self.grid.check_free_cell(getattr(self, name), name)
@@ -116,7 +116,8 @@ class Scenario:
                 raise ValueError(f"{name} {cell} is covered by an obstacle at tick 0")
             setattr(self, name, cell)
         if not isinstance(self.target_waypoints, Iterable):
-            raise ValueError(f"Scenario target_waypoints must be a list of cells, got {self.target_waypoints!r}")
+            raise ValueError("Scenario target_waypoints must be a list of cells, got "
+                             f"{checks.shown(self.target_waypoints)}")
         self.target_waypoints = [self.grid.check_free_cell(w, "target waypoint") for w in self.target_waypoints]
         self.target_speed = checks.number(self.target_speed, "target_speed (cells per tick)", 0.0, inclusive=False)
         if not isinstance(self.name, str) or not isinstance(self.description, str):
