@@ -563,6 +563,43 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
 
 
 @pytest.mark.parametrize("corner_cutting", [False, True])
+def test_a_goal_let_out_of_a_pocket_is_lowered_whole_and_prices_the_next_restart_by_what_it_lowered(monkeypatch,
+                                                                                                   corner_cutting):
+    """The ring round a goal sealed in taken away, the mend's lowering is the whole search from the ring: it runs to
+    the end however small the pocket's price made its budget (a restart would search the same cells after a reset),
+    and the cells it lowered price the next restart - so a box on the route later is mended, not restarted on the
+    pocket's price. Both equal a fresh converge."""
+    rng = np.random.default_rng(17)
+    occupied = rng.random((100, 100)) < 0.15
+    goal = (50, 50)
+    occupied[goal] = False
+    options = dict(corner_cutting=corner_cutting)
+    engine = Engine(occupied, goal, **options)
+    engine.converge()
+    far = farthest(engine)
+    ring = ring_round(occupied, goal, 4)
+    engine.set_cells(ring, np.ones(len(ring), bool))
+    engine.converge()
+    assert engine.converged_by() == "search"
+    pocket = int(np.count_nonzero(np.isfinite(engine.goal_distances())))
+    runs = mend_runs(monkeypatch, engine)
+    engine.set_cells(ring, np.zeros(len(ring), bool))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    reached = int(np.count_nonzero(np.isfinite(engine.goal_distances())))
+    assert engine.converged_by() == "mend" and not outcome.gave_up and outcome.lowered == reached - pocket
+    assert_equal_to_a_fresh_converge(engine, options)
+    route = engine.trace(0, far, 10**4)
+    box = np.array([(route[len(route) // 2][0] + i, route[len(route) // 2][1] + j) for i in (-1, 0, 1)
+                    for j in (-1, 0, 1)])
+    box = box[~engine.occupied[box[:, 0], box[:, 1]] & np.any(box != goal, axis=1)]
+    engine.set_cells(box, np.ones(len(box), bool))
+    engine.converge()
+    assert engine.converged_by() == "mend"
+    assert_equal_to_a_fresh_converge(engine, options)
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True])
 @pytest.mark.parametrize("probe_fills", [1.0, 1e9])
 def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(monkeypatch,
                                                                                                  corner_cutting,
