@@ -661,15 +661,17 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
 
     @ti.func
     def leaning(src: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
-        """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) whose target's value
-        is the cell's plus the move's cost: the neighbours whose route may come through the cell, in the same loads
-        (the stencil is symmetric, and a move's cost back is the same sum, bit for bit)."""
+        """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) that is open and
+        whose target's value is below the cap and at least the cell's plus the move's cost: the neighbours whose
+        relaxation may come through the cell, in the same loads (the stencil is symmetric, and a move's cost back is
+        the same sum, bit for bit). At a fixed point those are the neighbours whose route comes through it; past one
+        - cells freed or made cheaper by the same edits - also those the cell would lower."""
         best, value, leans = cap, src[0, i, j], 0
         for k, m in ti.static(tuple(enumerate(moves))):
             there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
             cand = crossing(there + cost, pen, 0, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
-            leans |= ti.select(there == value + cost, 1 << k, 0)
+            leans |= ti.select(value + cost <= there and there < cap and cand == there + cost, 1 << k, 0)
         return pinned(best, pen, header, cap, 0, i, j), leans
 
     @ti.func
@@ -1539,8 +1541,12 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
         checked first and a raised cell's neighbours after it. Cell by cell on a stack: a sealed pocket rises at
         memory speed, with no wave to wait for. Every cell left below the cap then has a real route (a neighbour at
-        least a move lower, down to the source). Only a raised cell's dependants - neighbours whose value is its
-        old one plus their move to it - are looked at again. The raised cells go in row 0 of ``trail``.
+        least a move lower, down to the source), or relaxes below its value through one that has (a cell freed or
+        made cheaper by the same edits opened the move: the seeds lower it). Only a raised cell's open neighbours
+        whose value is at least its old one plus the move (``leaning``) are looked at again: its dependants, and
+        those it relaxed below their value - looking at its exact dependants alone, a cell kept below its value
+        through a neighbour raised later kept a value its lost route gave, below every route it has. The raised
+        cells go in row 0 of ``trail``.
 
         It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
         search takes: the share of a restart's price the mend may spend). ``terms``: (a restart's price in those
