@@ -186,6 +186,7 @@ _FEWEST_SWEEPS = 16  # a repair's slice makes at least this many sweeps
 SLICE_GROWTH = 4
 _UNLISTED = -1  # a cell's previous entry in the search's links when it is in no bucket (and the end of a bucket)
 _STACKED = -(1 << 30)  # ... while it waits on the raise's stack (``_raise_rules``)
+_DEFERRED = _STACKED + 1  # ... or among the cells the raise looks at again once it has raised more
 #: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
@@ -661,17 +662,15 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
 
     @ti.func
     def leaning(src: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
-        """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) that is open and
-        whose target's value is below the cap and at least the cell's plus the move's cost: the neighbours whose
-        relaxation may come through the cell, in the same loads (the stencil is symmetric, and a move's cost back is
-        the same sum, bit for bit). At a fixed point those are the neighbours whose route comes through it; past one
-        - cells freed or made cheaper by the same edits - also those the cell would lower."""
+        """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) whose target's value
+        is the cell's plus the move's cost: the neighbours whose route may come through the cell, in the same loads
+        (the stencil is symmetric, and a move's cost back is the same sum, bit for bit)."""
         best, value, leans = cap, src[0, i, j], 0
         for k, m in ti.static(tuple(enumerate(moves))):
             there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
             cand = crossing(there + cost, pen, 0, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
-            leans |= ti.select(value + cost <= there and there < cap and cand == there + cost, 1 << k, 0)
+            leans |= ti.select(there == value + cost, 1 << k, 0)
         return pinned(best, pen, header, cap, 0, i, j), leans
 
     @ti.func
@@ -1540,13 +1539,14 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
         checked first and a raised cell's neighbours after it. Cell by cell on a stack: a sealed pocket rises at
-        memory speed, with no wave to wait for. Every cell left below the cap then has a real route (a neighbour at
-        least a move lower, down to the source), or relaxes below its value through one that has (a cell freed or
-        made cheaper by the same edits opened the move: the seeds lower it). Only a raised cell's open neighbours
-        whose value is at least its old one plus the move (``leaning``) are looked at again: its dependants, and
-        those it relaxed below their value - looking at its exact dependants alone, a cell kept below its value
-        through a neighbour raised later kept a value its lost route gave, below every route it has. The raised
-        cells go in row 0 of ``trail``.
+        memory speed, with no wave to wait for. Only a raised cell's dependants - neighbours whose value is its old
+        one plus their move to it - are looked at again. A cell that relaxes below its value (a cell freed or made
+        cheaper by the same edits opened a move to it) may do so through a neighbour not raised yet, of which it is
+        no dependant: it waits at the far end of row 0 of ``links`` and is looked at again once the stack has run
+        dry, as long as cells rose since it was last looked at (before, such a cell was kept, and one whose route
+        went through a cell now blocked kept the value that route gave, below every route it has). Every cell left
+        below the cap then has a real route (a neighbour at least a move lower, down to the source), or relaxes
+        below its value through one that has (the seeds lower it). The raised cells go in row 0 of ``trail``.
 
         It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
         search takes: the share of a restart's price the mend may spend). ``terms``: (a restart's price in those
@@ -1556,6 +1556,7 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
         the budget falls to a restart's share (``_budget_for``). Returns (cells raised, the budget, the cells the
         source reaches (-1: not counted)) and the probe."""
         top, raised, reached = 0, 0, terms[3]
+        last, waiting, rose = links.shape[1] - 1, 0, 0  # the cells waiting end at links[0, last], going down
         budget = _budget_for(budget, terms[0], terms[1], reached)
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
@@ -1571,6 +1572,7 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
                 values[0, i, j] = cap
                 trail[0, raised] = c
                 raised += 1
+                rose += 1
                 for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
                     if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
                         top = push(values, links, cap, top, i + m.dr, j + m.dc)  # reach of an edit)
@@ -1579,6 +1581,18 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
                     if counted(probe):
                         reached = probe[2]
                         budget = _budget_for(budget, terms[0], terms[1], reached)
+            elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
+                links[1, c] = _DEFERRED
+                links[0, last - waiting] = c
+                waiting += 1
+            if top == 0 and rose > 0:  # cells rose since the waiting ones were looked at: again
+                for k in range(waiting):
+                    links[0, top] = links[0, last - k]
+                    links[1, links[0, top]] = _STACKED
+                    top += 1
+                waiting, rose = 0, 0
+        for k in range(waiting):  # kept: every cell their relaxation goes through stayed
+            links[1, links[0, last - k]] = _UNLISTED
         while top > 0:  # over budget: the stack emptied, for the restart
             top -= 1
             links[1, links[0, top]] = _UNLISTED

@@ -564,11 +564,11 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
 
 
 def test_a_cell_blocked_and_one_freed_in_the_same_edit_leave_no_value_below_its_route():
-    """Blocking (5, 3) and freeing (6, 1) at once: (6, 0) and (7, 1) lost their routes through (5, 3), and each
-    relaxes below its old value through the other, across the diagonals (6, 1) opened - overconsistent, not raised,
-    where the raise looked for a raised cell's dependants among neighbours whose value was exactly its own plus the
-    move: the old values stayed and the mend ended at 10.537 for (7, 0), below its shortest route (11.122, scipy's
-    Dijkstra). A raised cell now looks again at every open neighbour whose value is at least its own plus the move."""
+    """Blocking (5, 3) and freeing (6, 1) at once: the mend ended with (7, 0) and (7, 1) below their shortest
+    routes (10.537 for (7, 0), where scipy's Dijkstra gives 11.122). Cells that lost their routes through (5, 3) but
+    relax below their old values across moves the freed cell opened were kept at once, through neighbours that rose
+    later and whose dependants they were not, so nothing looked at them again. A cell relaxing below its value now
+    waits to be looked at again once the cells due to rise have risen."""
     rows = (".......G", "........", ".......#", "...##...", ".##.....", ".#...#..", ".#......", "...#....")
     occupied = np.array([[ch == "#" for ch in row] for row in rows])
     goal = (0, 7)
@@ -587,9 +587,9 @@ def test_a_cell_blocked_and_one_freed_in_the_same_edit_leave_no_value_below_its_
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, False), (8, True), (4, False)])
 def test_mends_of_cells_blocked_and_freed_together_equal_a_fresh_converge(monkeypatch, neighbourhood, corner_cutting):
     """Small random maps, a few cells toggled at once (some blocked, some freed), each mend let run to its end
-    (MEND_SHARE past any raise): every field a fresh converge's, bit for bit. When the raise looked again only at
-    the neighbours whose value was exactly a raised cell's plus the move, 2 of these 400 maps on 16 neighbours ended
-    with values below their routes (9 of 2,000 on 16 neighbours, 1 on 8)."""
+    (MEND_SHARE past any raise): every field a fresh converge's, bit for bit. When the raise kept a cell relaxing
+    below its value at once, 2 of these 400 maps on 16 neighbours ended with values below their routes (9 of 2,000
+    on 16 neighbours, 1 on 8)."""
     monkeypatch.setattr(engine_module, "MEND_SHARE", 100.0)
     options = dict(neighbourhood=neighbourhood, corner_cutting=corner_cutting)
     mended = 0
