@@ -36,10 +36,10 @@ def yaml_text_hint(value) -> str:
     return ""
 
 
-def path(value, name: str) -> Path:
-    """``value`` as a Path if it is a str or path-like."""
+def path(value, name: str, kind: str = "file") -> Path:
+    """``value`` as a Path if it is a str or path-like; ``kind`` ("file", "folder") names what it should lead to."""
     if not isinstance(value, (str, os.PathLike)):
-        raise ValueError(f"{name} must be a file path (a str or a pathlib.Path), got {value!r}")
+        raise ValueError(f"{name} must be a {kind} path (a str or a pathlib.Path), got {shown(value)}")
     return Path(value)
 
 

@@ -14,7 +14,7 @@ from PIL import Image
 
 import tdp
 from tdp.cli import output_folder, save_json
-from tdp.sweep import load_spec
+from tdp.sweep import load_spec, run_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
 ROS_YAML = "image: {image}\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n"
@@ -103,6 +103,8 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
     (lambda: tdp.load_world(None), "path must be a file path"),
     (lambda: tdp.load_scenarios(3.5), "path must be a file path"),
     (lambda: load_spec(7), "path must be a file path"),
+    (lambda: run_sweep(load_spec(ROOT / "benchmarks" / "specs" / "paper-quick.yaml"), 5,
+                       serial=True), "out must be a folder path .* got 5"),
     (lambda: tdp.DistanceField(GRID, (0, 0)).distance((0.9, 0.9)), "cell must be a \\(row, col\\) pair of integers"),
     (lambda: tdp.DistanceField(GRID, (0, 0), corner_cutting="no"), "corner_cutting must be True or False"),
     (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied([(1, 1)], occupied="yes"), "occupied must be True"),

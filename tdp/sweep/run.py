@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 from typing import Iterable, TextIO
 
+from .. import checks
 from .episode import measure_episode
 from .spec import EpisodeSpec, Spec
 
@@ -124,8 +125,11 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int 
     ``serial``: one after another in this process. Otherwise on Dask distributed: the cluster at ``scheduler``
     (an address such as ``tcp://10.0.0.5:8786``), or a local cluster of ``workers`` processes (default: one per
     core), each running one episode at a time with cores // workers Taichi threads.
+
+    Raises:
+        ValueError: ``out`` is no path (a str or a pathlib.Path).
     """
-    journal = Journal(Path(out) / JOURNAL, log)
+    journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)
     episodes = spec.episodes()
     todo = [e for e in episodes if e.key not in journal.rows]
     progress = Progress(len(episodes), len(episodes) - len(todo), log)
