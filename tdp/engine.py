@@ -1751,6 +1751,16 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
     successor_move, paint_cells = cell.successor_move, _paint_rules(cell).paint_cells
 
     @kernel
+    def rekey(stamps: t.stamps, keys: t.keys, tick: ti.i32):
+        """Key the tiles active for round ``tick`` after iterations, which wake tiles without keys and may leave
+        cells above or below their relaxation in them: each is lifted at once, then lowered with no key (due at
+        once). A tile whose keys were stale (settled, say) was lifted and then dropped as settled, its cells left
+        above their relaxation."""
+        for g, a, b in ti.ndrange(stamps.shape[0], stamps.shape[1], stamps.shape[2]):
+            if stamps[g, a, b] >= tick:
+                keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = ti.math.inf, -1.0
+
+    @kernel
     def settle(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, cap: ti.f32,
                tick: ti.i32) -> ti.i32:
         """One round ``tick`` of in-place settling, the tiles shared out among the threads; returns the number of
@@ -2158,6 +2168,7 @@ class _LayerArrays:
         self.mirrored = True  # both buffers hold the same values wherever a tile is inactive
         self.listed = False  # the work list of round ``tick`` holds the active tiles (kept by settling and painting)
         self.round_open = False  # the last launch's allowance cut round ``tick`` short: it goes on at the next
+        self.woken_unkeyed = False  # iterations woke tiles since settling or a search last keyed them: ``rekey``
         self.current = 0  # which buffer holds the values
         self.columns = slice(1, None) if self.lanes else slice(0, 1)  # this kind's columns of a sample
         # (cells as bytes, this kind's values there) sampled while idle; dropped by everything that changes values:
@@ -2310,6 +2321,7 @@ class _LayerArrays:
         if tiles:
             self.stamps.fill(-1)
             self.keys.fill(math.inf)
+            self.woken_unkeyed = False
             self.kernels.seed(src=self.src, dst=self.dst, pen=self.pen, stamps=self.stamps, header=self.header,
                               tick=self.tick)
         self.woken = self.tick
@@ -2411,6 +2423,7 @@ class _Layers(_LayerArrays):
             self._count_iterations(k)
             return
         self._idle_sample = self.edits = None  # iterations leave the values between fixed points
+        self.woken_unkeyed = True
 
         def serially(first: int, steps: int, limit: int) -> tuple[int, bool]:
             done = self.kernels.iterate_serially(**self._relaxing(), cells=cells, out=out,
@@ -2472,6 +2485,9 @@ class _Layers(_LayerArrays):
         of tiles (0: no limit; the rest of the round waits for the next converge); :attr:`swept` counts the sweeps it
         made on the calling thread."""
         self._idle_sample, self.fresh, self.tiles_settled = None, False, False
+        if self.woken_unkeyed:  # iterations since the keys were set: the tiles they woke keyed to lift, then lower
+            self.kernels.rekey(stamps=self.stamps, keys=self.keys, tick=self.tick)
+            self.woken_unkeyed = self.listed = False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         self.swept = 0
@@ -2549,7 +2565,7 @@ class _Layers(_LayerArrays):
     def _searched(self, frontier: bool, by: str) -> None:
         """The state after a search or a mend (``by``), which left a ``frontier`` (its tiles handed over) or none."""
         self.converged_by = by
-        self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = False
+        self.fresh = self.listed = self.round_open = self.cut_short = self.mirrored = self.woken_unkeyed = False
         self.swept = 0
         self.pending, self.woken = frontier, self.tick
         self._idle_sample, self.successors = None, {}

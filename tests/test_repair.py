@@ -563,6 +563,55 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
 
 
+def test_rounds_after_iterations_lower_every_tile_the_iterations_woke():
+    """Edits, a few iterations after each (``step``), then rounds: the iterations woke tiles without keys, and a tile
+    a search had keyed settled kept that key - lifted in the first round, it was then dropped as settled with cells
+    above their relaxation (the bottom right of this 12 x 11 map on 4 neighbours ended 2-4 above scipy's
+    Dijkstra). Such tiles are now keyed to lift, then lower, when rounds follow iterations."""
+    rows = ("...##.#....", "..#........", ".##.##..##.", "..#.#......", "..#..#.....", ".....#.....",
+            "#.#...#...#", "....##.....", "#...#......", "#..#......#", "...#...#..#", "#.....#....")
+    occupied = np.array([[ch == "#" for ch in row] for row in rows])
+    goal = (5, 1)
+    engine = Engine(occupied, goal, neighbourhood=4)
+    engine.converge()
+    edits = [([(6, 3)], [True], 2), ([(4, 10), (3, 7), (5, 5), (11, 5), (4, 5)], [True, False, True, False, False], 2),
+             ([(1, 1), (0, 9), (5, 8), (1, 8)], [False, True, False, True], 3), ([(7, 7), (1, 7)], [True, True], 1),
+             ([(1, 3)], [True], 3)]
+    for cells, blocked, steps in edits:
+        engine.set_cells(np.array(cells), np.array(blocked))
+        occupied[tuple(np.array(cells).T)] = blocked
+        engine.step(steps)
+    engine.converge(max_rounds=10**6)
+    assert engine.converged_by() == "rounds" and not engine.pending()
+    np.testing.assert_array_equal(engine.goal_distances(), distances_to(occupied, goal, neighbourhood=4))
+    assert_equal_to_a_fresh_converge(engine, dict(neighbourhood=4))
+
+
+@pytest.mark.parametrize("neighbourhood", [4, 8, 16])
+def test_rounds_after_edits_and_iterations_equal_a_fresh_converge(neighbourhood):
+    """Random small maps with nodes, a few edits with iterations between them, then rounds: every layer a fresh
+    converge's, bit for bit. (The defect the test above pins down is rare here: 7 of 20,000 such goal layers on 4
+    neighbours, 1 of 400 maps with nodes on mixed stencils, failed before.)"""
+    for seed in range(120):
+        rng = np.random.default_rng(seed)
+        occupied = rng.random((int(rng.integers(9, 24)), int(rng.integers(9, 24)))) < 0.2
+        free = np.argwhere(~occupied)
+        goal = tuple(int(v) for v in free[rng.integers(len(free))])
+        nodes = free[rng.choice(len(free), 6, replace=False)].astype(np.int32)
+        options = dict(neighbourhood=neighbourhood, nodes=nodes, node_cap=float(rng.uniform(3, 20)))
+        engine = Engine(occupied, goal, **options)
+        engine.converge()
+        for _ in range(int(rng.integers(2, 6))):
+            cells = free[rng.choice(len(free), int(rng.integers(1, 6)), replace=False)]
+            cells = cells[~np.any(np.all(cells[:, None] == np.vstack([nodes, goal])[None], axis=2), axis=1)]
+            blocked = rng.random(len(cells)) < 0.5
+            engine.set_cells(cells, blocked)
+            occupied[cells[:, 0], cells[:, 1]] = blocked
+            engine.step(int(rng.integers(1, 4)))
+        engine.converge(max_rounds=10**6)
+        assert_equal_to_a_fresh_converge(engine, options)
+
+
 def test_a_cell_blocked_and_one_freed_in_the_same_edit_leave_no_value_below_its_route():
     """Blocking (5, 3) and freeing (6, 1) at once: the mend ended with (7, 0) and (7, 1) below their shortest
     routes (10.537 for (7, 0), where scipy's Dijkstra gives 11.122). Cells that lost their routes through (5, 3) but
