@@ -592,7 +592,7 @@ def test_rounds_after_edits_and_iterations_equal_a_fresh_converge(neighbourhood)
     """Random small maps with nodes, a few edits with iterations between them, then rounds: every layer a fresh
     converge's, bit for bit. (The defect the test above pins down is rare here: 7 of 20,000 such goal layers on 4
     neighbours, 1 of 400 maps with nodes on mixed stencils, failed before.)"""
-    for seed in range(120):
+    for seed in range(40):
         rng = np.random.default_rng(seed)
         occupied = rng.random((int(rng.integers(9, 24)), int(rng.integers(9, 24)))) < 0.2
         free = np.argwhere(~occupied)
@@ -633,12 +633,12 @@ def test_a_cell_blocked_and_one_freed_in_the_same_edit_leave_no_value_below_its_
     assert_equal_to_a_fresh_converge(engine, {})
 
 
-@pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, False), (8, True), (4, False)])
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, False), (8, True)])
 def test_mends_of_cells_blocked_and_freed_together_equal_a_fresh_converge(monkeypatch, neighbourhood, corner_cutting):
     """Small random maps, a few cells toggled at once (some blocked, some freed), each mend let run to its end
     (MEND_SHARE past any raise): every field a fresh converge's, bit for bit. When the raise kept a cell relaxing
     below its value at once, 2 of these 400 maps on 16 neighbours ended with values below their routes (9 of 2,000
-    on 16 neighbours, 1 on 8)."""
+    on 16 neighbours, 1 on 8; on 4 neighbours no move crosses a cell, so freeing one opens no move between others)."""
     monkeypatch.setattr(engine_module, "MEND_SHARE", 100.0)
     options = dict(neighbourhood=neighbourhood, corner_cutting=corner_cutting)
     mended = 0
