@@ -332,7 +332,7 @@ def _launch(run: NamedTuple, result: type | None = None) -> np.ndarray:
 
 def _outcome(result: type, launched: np.ndarray):
     """The ``result`` (a named tuple type) a kernel wrote at the end of its launch array."""
-    return result(*(int(value) for value in launched[len(launched) - len(result._fields):]))
+    return result(*launched[len(launched) - len(result._fields):].tolist())
 
 
 _STEP, _ITERATE, _SETTLE, _SEARCH = _slots(_StepRun), _slots(_IterateRun), _slots(_SettleRun), _slots(_SearchRun)
