@@ -123,8 +123,8 @@ RESTART_SHARE = 0.5
 #: dearer price gives way sooner where a raise runs away (a box sealing off half a maze). Its lowering never gives
 #: way: it takes each cell it lowers once, as a restart's search would, and a restart searches every cell the source
 #: reaches, the lowered ones among them, after a reset. (Giving way there too, a goal let out of a pocket - whose
-#: lowering is the whole search - cost a mend its share of the pocket's small price, then the restart: 1.45-1.61x a
-#: fresh converge on turtlebot3's world, against 1.05-1.25x now.)
+#: lowering is the whole search - cost a mend its share of the pocket's small price, then the restart: 1.43-1.64x a
+#: fresh converge on turtlebot3's world, against 1.10-1.15x now.)
 MEND_SHARE = 0.4
 RAISE_COST = 2
 #: ... and an edited cell at EDIT_COST: a mend paints it, pushes the cells within reach of it for the raise and, if
@@ -1641,9 +1641,9 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
         """The lowering of a repair: Dial's search from the seeds (``trail``'s first ``seeds``, their values set),
         as :func:`search` from the source. Seeds span many buckets, more than the ring holds: they wait in the
         trail and join the ring once their bucket is less than half a ring ahead (the trail is scanned every half
-        ring, or jumped to when the ring runs dry). Returns
-        (buckets emptied, cells listed or waiting, seeds waiting: the frontier a focused repair leaves, still in the
-        trail, cells taken)."""
+        ring, or jumped to when the ring runs dry). It runs to its end (or its focus): a restart would search every
+        cell it lowers. Returns (buckets emptied, cells listed or waiting, seeds waiting: the frontier a focused
+        repair leaves, still in the trail, cells taken)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         mask = links.shape[1] - heads - 1
         clear(links, heads)
@@ -2487,7 +2487,7 @@ class _Layers(_LayerArrays):
         self._idle_sample, self.fresh, self.tiles_settled = None, False, False
         if self.woken_unkeyed:  # iterations since the keys were set: the tiles they woke keyed to lift, then lower
             self.kernels.rekey(stamps=self.stamps, keys=self.keys, tick=self.tick)
-            self.woken_unkeyed = self.listed = False
+            self.woken_unkeyed = False
         limit = _NEVER if max_rounds is None else max_rounds
         state = {"focused": False, "cut": False, "move": None}
         self.swept = 0
