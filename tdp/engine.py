@@ -274,15 +274,16 @@ class _SearchResult(NamedTuple):
 
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
-    stamped for, its budget (cells a search takes: its look and raise past it, the mend gives way to a restart), a
-    restart's price and a reset's fills in those units, the cells its first look at the cut may take
-    (``_cut_rules``), the work its probe may do evenly with the mend's in those units (``_flood_rules``), whether
-    every tile is settled already (1: the hand-over stamps the frontier alone), and whether to mend (0: a launch
-    that only compiles)."""
+    stamped for, and for a restart's (``_restart_tick``), its budget (cells a search takes: its look and raise past
+    it, the mend gives way to a restart), a restart's price and a reset's fills in those units, the cells its first
+    look at the cut may take (``_cut_rules``), the work its probe may do evenly with the mend's in those units
+    (``_flood_rules``), whether every tile is settled already (1: the hand-over stamps the frontier alone), and
+    whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
     tick: int
+    restart_tick: int
     budget: int
     restart: int
     fills: int
@@ -297,7 +298,7 @@ class _MendResult(NamedTuple):
     raised to the cap, the cells the source still reaches if counted (-1: not), its work in cells a search takes
     (the probe's apart), the cells and seeds its probe counted and queued, whether it gave up for a restart (a
     restart cost less than the rest of the mend, or its look and raise passed the budget), and the cells its lowering
-    took."""
+    took - having given up, its restart's search took (the buckets and the frontier then the search's)."""
 
     buckets: int
     frontier: int
@@ -1872,14 +1873,16 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, run: t.ints):
+             trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, spare: t.values, run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_cut_rules``' ``cut_off``, ``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``'
         ``lower_cut``, ``_flood_rules``' probe keeping pace with the first two; ``run``: a _MendRun), the tiles then
         handed over to settling for round ``tick``; its results (a _MendResult) go in ``run``. The edits'
         ``penalties`` are painted first (``_LayerArrays.paint`` holds them back for it). ``trail``: (_TRAIL_ROWS,
         padded cells), its rows ``cut_off``'s, ``raise_cut``'s and the probe's, all 0 in row 2. A goal the edits
-        sealed in, it gives up for a restart as soon as it knows."""
+        sealed in, it gives up for a restart as soon as it knows; giving up, it restarts in the same launch: the
+        search from the source (``_search_rules``) in ``spare``, a buffer at the initial state (the cap
+        everywhere), its tiles handed over for round ``restart_tick``."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
@@ -1903,7 +1906,10 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
             run[_MENDED.probed], run[_MENDED.seeded] = probe[2], probe[1]
             run[_MENDED.gave_up] = ti.select(spent > budget or _doomed(reached, restart, fills), 1, 0)
-            if run[_MENDED.gave_up]:
+            if run[_MENDED.gave_up]:  # a search from the initial state costs less: it runs in the spare buffer
+                found = bucket_search(spare, pen, header, links, cap, run[_MEND.focus_row], run[_MEND.focus_col])
+                hand_over(spare, stamps, keys, links, run[_MEND.restart_tick], True)
+                run[_MENDED.buckets], run[_MENDED.frontier], run[_MENDED.lowered] = found[0], found[1], found[2]
                 continue
             seeds = seed_cut(values, pen, header, trail, cells, penalties, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col])
@@ -2188,6 +2194,7 @@ class _LayerArrays:
         self.fresh = False
         self.links = None  # the search's buckets (``_search_rules``), made at the first search
         self.trail = None  # a mend's raised cells, then its seeds (``_raise_rules``), made at the first mend
+        self.spare = None  # ... and a buffer of values at the cap everywhere, where a mend that gives up restarts
         # the cells edited since the layer was last at its fixed point (None: it is not, or may not be): a converge
         # mends them cell by cell (:meth:`_mend`)
         self.edits: list[tuple[np.ndarray, np.ndarray]] | None = None
@@ -2354,6 +2361,7 @@ class _LayerArrays:
         # compiles another kernel: the first mend compiled for 1.6 s inside a planner's tick)
         scratch.links = ti.ndarray(ti.i32, (2, IDLE_ENTRIES))
         scratch.trail = ti.ndarray(ti.i32, (_TRAIL_ROWS, IDLE_ENTRIES))
+        scratch.spare = scratch.dst
         for kernel in self.kernels.all:
             kernel(**{parameter.name: _idle_argument(parameter, scratch)
                       for parameter in inspect.signature(kernel).parameters.values()})
@@ -2584,8 +2592,9 @@ class _Layers(_LayerArrays):
         them (``_raise_rules``, ``_lower_rules``), so the work follows the cells that
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Edits
-        whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once. A mend that
-        finishes leaves the restart's price as it found it (MEND_SHARE): the cells its probe counted, else at least
+        whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once; a mend that gives
+        up restarts in its own launch (:meth:`_restarted`: a goal sealed in costs the look that finds it, a fill and
+        the pocket's search, in one launch where a restart took two more). A mend that finishes leaves the restart's price as it found it (MEND_SHARE): the cells its probe counted, else at least
         those it lowered (a goal let out of a pocket reaches all it lowered, where the last search took the pocket).
         Returns the buckets emptied."""
         fills = self._fills()
@@ -2599,19 +2608,35 @@ class _Layers(_LayerArrays):
         if self.trail is None:
             self.trail = ti.ndarray(ti.i32, (_TRAIL_ROWS, self.padded_cells))
             self.trail.fill(0)
+            self.spare = self._array(self._arrays.buffers[0].shape)
+            self.spare.fill(self.cap)
         looks = min(budget, int(CUT_SHARE * fills))
-        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, budget, restart, fills, looks,
+        restart_tick = self.tick + -self.tick % 4  # as a reset leaves it
+        run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
                                min(int(PROBE_FILLS * fills), _NEVER),
                                int(self.tiles_settled), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
-                          run=run)
+                          spare=self.spare, run=run)
         outcome = _outcome(_MendResult, run)
-        if outcome.gave_up:  # most of the layer cut off or changed: a search from the source costs less
-            return self.restart(None, focus)
+        if outcome.gave_up:  # most of the layer cut off or changed: the launch searched from the source instead
+            return self._restarted(outcome, restart_tick)
         if not outcome.frontier and self.searched is not None:
             self.searched = outcome.reached if outcome.reached >= 0 else max(self.searched, outcome.lowered)
         self._searched(bool(outcome.frontier), "mend")
+        return outcome.buckets
+
+    def _restarted(self, outcome: "_MendResult", tick: int) -> int:
+        """After a mend that gave up and searched from the source in the spare buffer, as :meth:`restart` would
+        (its reset's ``tick``): that buffer holds the values from now on, and the one it replaces is filled with the
+        cap to be the next spare (one fill, as the reset's). Returns the search's buckets."""
+        buffers = self._arrays.buffers
+        buffers[self.current], self.spare = self.spare, buffers[self.current]
+        self.spare.fill(self.cap)
+        self.tick = tick
+        if not outcome.frontier:
+            self.searched = outcome.lowered
+        self._searched(bool(outcome.frontier), "search")
         return outcome.buckets
 
     def _fills(self) -> int:

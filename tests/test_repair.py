@@ -783,3 +783,30 @@ def test_a_goal_move_restarts_with_the_values_filled_alone(monkeypatch, focused)
     fresh = Engine(engine.occupied, (30, 40))
     fresh.converge()
     np.testing.assert_array_equal(engine.goal_distances(), fresh.goal_distances())
+
+
+@pytest.mark.parametrize("focused", [False, True])
+def test_a_mend_that_gives_up_restarts_in_its_own_launch(monkeypatch, focused):
+    """A goal sealed in: the mend gives up and searches from the goal in the same launch, in a spare buffer at the
+    cap (no search launched after it), which then holds the values while the one it replaced becomes the spare,
+    refilled. Sealed, let out, sealed again, iterated, sealed with a focus: each converge equals a fresh engine's -
+    a spare left holding old values would leave them round the second pocket."""
+    occupied = np.random.default_rng(12).random((50, 60)) < 0.2
+    goal, robot = (25, 30), (2, 3)
+    occupied[goal] = occupied[robot] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    launches = count_launches(monkeypatch, engine, ("mend", "search"))
+    rings = [ring_round(occupied, goal, 4), ring_round(occupied, goal, 7)]
+    for k, ring in enumerate(rings + rings):
+        engine.set_cells(ring, np.ones(len(ring), bool))
+        launches.clear()
+        engine.converge(focus=robot if focused else None)
+        assert launches == ["mend"] and engine.converged_by() == "search"
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, {})
+        engine.set_cells(ring, np.zeros(len(ring), bool))
+        if k == 1:
+            engine.step(3)  # iterations: both buffers in use, the spare aside
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, {})
