@@ -79,6 +79,7 @@ TILE = 8
 _FAR = -(1 << 28)  # origin of an unused lane: its window lies far outside every map
 _NEVER = 1 << 30  # an iteration number no tile is ever stamped for
 _FLOAT32_MAX = float(np.finfo(np.float32).max)
+_FREE, _BLOCKED = np.float32(0.0), np.float32(np.inf)  # the penalties of an unweighted free cell and a blocked one
 #: The key of a tile just settled: nothing pending can lower its cells (a key is a lower bound, here a vacuous one)
 #: until a neighbour's change wakes it with a real key. A tile woken before its turn in a round keeps this, and
 #: waits to the end instead of being due at once (which kept a focused repair from stopping).
@@ -2594,9 +2595,9 @@ class _Layers(_LayerArrays):
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Edits
         whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once; a mend that gives
         up restarts in its own launch (:meth:`_restarted`: a goal sealed in costs the look that finds it, a fill and
-        the pocket's search, in one launch where a restart took two more). A mend that finishes leaves the restart's price as it found it (MEND_SHARE): the cells its probe counted, else at least
-        those it lowered (a goal let out of a pocket reaches all it lowered, where the last search took the pocket).
-        Returns the buckets emptied."""
+        the pocket's search, in one launch where a restart took two more). A mend that finishes leaves the restart's
+        price as it found it (MEND_SHARE): the cells its probe counted, else at least those it lowered (a goal let out
+        of a pocket reaches all it lowered, where the last search took the pocket). Returns the buckets emptied."""
         fills = self._fills()
         restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
         budget = int(MEND_SHARE * restart)
@@ -2697,11 +2698,14 @@ def _float32_cap(cap: float) -> float:
 
 def _cells_array(cells) -> np.ndarray:
     """(n, 2) int32, contiguous: how kernels take cells."""
-    return np.ascontiguousarray(np.asarray(cells, np.int32).reshape(-1, 2))
+    return np.ascontiguousarray(cells, np.int32).reshape(-1, 2)
 
 
 def _joined(edits: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.ndarray]:
-    """Edits (cells, penalties), in order, as one launch's cells (``_cells_array``) and penalties."""
+    """Edits (cells, penalties), in order, as one launch's cells (``_cells_array``) and penalties: one edit as it
+    is (each is made by ``_cells_array``)."""
+    if len(edits) == 1:
+        return edits[0]
     cells, penalties = (np.concatenate(parts) for parts in zip(*edits))
     return _cells_array(cells), penalties
 
@@ -2950,8 +2954,8 @@ class Engine:
     def _penalties(self, layers: "_Layers", occupied: np.ndarray, where) -> np.ndarray:
         """The penalties of the cells ``where`` selects (an index into the map) for a kind of layer, whose occupancy
         is ``occupied``: inf blocked; free 0, or the cell's cost for the weighted goal layer."""
-        free = self.cost[where] if layers.kernels.weighted else 0.0
-        return np.where(occupied, np.inf, free).astype(np.float32)
+        free = self.cost[where] if layers.kernels.weighted else _FREE
+        return np.where(occupied, _BLOCKED, free)  # float32 (the costs are), in one call
 
     def set_goal(self, goal: tuple[int, int]) -> None:
         """Move the goal layer's source; the values propagate from it from the next iteration on."""

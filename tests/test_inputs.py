@@ -114,6 +114,10 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
     (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied([(1, 2.5)]), "set_occupied: expected .* dtype float64"),
     (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied([(1, 10)]), "set_occupied: cell \\(1, 10\\) is outside"),
     (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied(np.zeros((9, 10), bool)), "a mask must have the map's"),
+    (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied(np.array([(1, 2**32 + 3)])),
+     "set_occupied: cell \\(1, 4294967299\\) is outside"),  # not 3, as int32 would read it
+    (lambda: tdp.DistanceField(GRID, (0, 0)).set_occupied(np.array([(2, -1)], ">i2")),
+     "set_occupied: cell \\(2, -1\\) is outside"),
     (lambda: tdp.Navigator(GRID, (0, 0), (9, 9)).update_map([(-1, 3)]), "update_map: cell \\(-1, 3\\) is outside"),
     (lambda: tdp.Navigator(GRID, (0, 0), (9, 9)).set_goal((2.5, 3.7)), "goal must be a \\(row, col\\) pair"),
     (lambda: tdp.Navigator(GRID, (0, 0), (9, 9)).move_robot((-5, 100)), "robot cell \\(-5, 100\\) is outside"),
@@ -123,6 +127,15 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
 def test_bad_arguments_are_clear_errors(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_cells_of_any_integer_array_are_read_as_their_values():
+    """Cells come as lists or arrays of any integer type and byte order: each is read as the cell it names."""
+    cells = [(0, 3), (9, 9), (4, 0)]
+    for array in (cells, np.array(cells, np.uint8), np.array(cells, ">i4"), np.array(cells, np.int64)[::-1]):
+        field = tdp.DistanceField(GRID, (0, 0))
+        field.set_occupied(array)
+        assert sorted(map(tuple, np.argwhere(field.occupied).tolist())) == sorted(cells)
 
 
 def test_numpy_integers_are_cells():
