@@ -1416,14 +1416,15 @@ _doomed, _telling, _probe_work = ti.func(restart_is_cheaper), ti.func(most_telli
 def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """A mend's probe of a restart's price: it counts the cells the source reaches, racing the mend's first look and
     its raise (``pace``). It steps by the moves that cross no cell (``_cell_rules``' ``steps``: they reach the same
-    cells as the whole stencil) - where those are the four straight moves, a scanline fill of a few loads a cell,
-    where the whole stencil takes forty. Its queue is row ``_PROBE_QUEUE`` of a mend's ``trail``, its marks the
-    ``_PROBED`` bit of row 2 (the first look's marks lie below it). A probe is (head, tail, cells marked, the count
-    past which it tells nothing, the work in cells a search takes it may do evenly with the mend's): its queue of
-    seeds is ``trail[_PROBE_QUEUE, head:tail]``, each a cell marked, and head == tail once every cell the source
-    reaches is counted. Its work is :func:`probe_work`'s."""
+    cells as the whole stencil) - where those are the four straight moves, with or without the four diagonal ones
+    (corners cut), a scanline fill of a few loads a cell, where the whole stencil takes forty. Its queue is row
+    ``_PROBE_QUEUE`` of a mend's ``trail``, its marks the ``_PROBED`` bit of row 2 (the first look's marks lie below
+    it). A probe is (head, tail, cells marked, the count past which it tells nothing, the work in cells a search
+    takes it may do evenly with the mend's): its queue of seeds is ``trail[_PROBE_QUEUE, head:tail]``, each a cell
+    marked, and head == tail once every cell the source reaches is counted. Its work is :func:`probe_work`'s."""
     blocked, steps = cell.blocked, cell.steps
-    spans = all(abs(m.dr) + abs(m.dc) == 1 for m in steps)  # the four straight steps: fill by rows
+    spans = all(max(abs(m.dr), abs(m.dc)) == 1 for m in steps)  # the straight steps, and the diagonal: fill by rows
+    reach = int(any(m.dr and m.dc for m in steps))  # a diagonal step reaches a column past a span in the rows beside
 
     @ti.func
     def open_cell(pen: ti.template(), trail: ti.template(), width, i, j):
@@ -1464,7 +1465,8 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
         evenly up to its allowance, one cell per PROBE_PACE of the mend's past it -, it has counted past its most,
         or no seed is left; returns the new probe. With the straight steps (``spans``) a seed's row is filled left
         and right at once, and a seed is queued for each run of open cells beside the filled span in the rows above
-        and below (a scanline fill: a few loads a cell); else each seed queues its open neighbours."""
+        and below (a scanline fill: a few loads a cell), the span widened by a column each side where the steps
+        are diagonal too; else each seed queues its open neighbours."""
         width = pen.shape[2]
         head, tail, marked = probe[0], probe[1], probe[2]
         even = ti.min(work, probe[4] + work // PROBE_PACE)  # its work's match: even, then one per PROBE_PACE
@@ -1482,7 +1484,7 @@ def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 marked += right - left
                 for row in ti.static((-1, 1)):
                     run = False
-                    for v in range(left, right + 1):
+                    for v in range(left - reach, right + reach + 1):
                         free = open_cell(pen, trail, width, i + row, v)
                         if free and not run:
                             tail = enqueue(trail, width, i + row, v, tail)

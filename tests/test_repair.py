@@ -422,13 +422,13 @@ def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_p
         assert_equal_to_a_fresh_converge(engine, options)
 
 
-def reachable_by_the_stencil(occupied: np.ndarray, source, corner_cutting: bool) -> int:
-    """The free cells a chain of the 16-neighbour stencil's allowed moves joins to ``source`` (a plain BFS)."""
+def reachable_by_the_stencil(occupied: np.ndarray, source, corner_cutting: bool, neighbourhood: int = 16) -> int:
+    """The free cells a chain of the stencil's allowed moves joins to ``source`` (a plain BFS)."""
     rows, cols = occupied.shape
     free = lambda r, c: 0 <= r < rows and 0 <= c < cols and not occupied[r, c]  # noqa: E731
     seen, queue = {tuple(source)}, [tuple(source)]
     for r, c in queue:
-        for move in stencil.moves(16, corner_cutting):
+        for move in stencil.moves(neighbourhood, corner_cutting):
             there = (r + move.dr, c + move.dc)
             if there not in seen and free(*there) and all(free(r + dr, c + dc) for dr, dc in move.crossed):
                 seen.add(there)
@@ -698,14 +698,14 @@ def test_a_goal_let_out_of_a_pocket_is_lowered_whole_and_prices_the_next_restart
     assert_equal_to_a_fresh_converge(engine, options)
 
 
-@pytest.mark.parametrize("corner_cutting", [False, True])
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (16, True), (8, True)])
 @pytest.mark.parametrize("probe_fills", [1.0, 1e9])
-def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(monkeypatch,
-                                                                                                 corner_cutting,
-                                                                                                 probe_fills):
+def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(
+        monkeypatch, neighbourhood, corner_cutting, probe_fills):
     """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start:
-    it counts the cells a BFS by the stencil reaches and the mend gives way to a restart at once; kept even with the
-    raise throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more
+    it counts the cells a BFS by the stencil reaches (by rows where its steps are the straight ones, with the
+    diagonal ones or not; cell by cell with the knight's too) and the mend gives way to a restart at once; kept even
+    with the raise throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more
     work than the count (before the race, the probe started once the raise had spent its share of the fills, at half
     a cell per cell raised). The same ring round a far cell leaves the source most of the map: the probe tells
     nothing - its work within its allowance and an eighth of the mend's, or kept even, its count stopped past
@@ -716,7 +716,8 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
     occupied = rng.random((120, 120)) < 0.15
     goal = (60, 60)
     occupied[goal] = False
-    engine = Engine(occupied, goal, corner_cutting=corner_cutting)
+    options = dict(neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+    engine = Engine(occupied, goal, **options)
     engine.converge()
     runs = mend_runs(monkeypatch, engine)
     width = occupied.shape[1]  # one seed's row past a bound at most
@@ -730,7 +731,7 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
         assert engine.converged_by() == by
         if by == "search":
             assert outcome.gave_up and outcome.reached == reachable_by_the_stencil(engine.occupied, goal,
-                                                                                   corner_cutting)
+                                                                                   corner_cutting, neighbourhood)
             assert outcome.raised > 0
             if probe_fills > 1:
                 assert outcome.raised * engine_module.RAISE_COST <= probed + engine_module.RAISE_COST
@@ -740,11 +741,11 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
                 assert outcome.probed <= engine_module.most_telling(launch.restart, launch.fills) + 1 + 2 * width
             else:
                 assert probed <= launch.probe_budget + outcome.spent // engine_module.PROBE_PACE + 2 * width
-        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+        assert_equal_to_a_fresh_converge(engine, options)
         assert_no_marks_left(engine)
         engine.set_cells(ring, np.zeros(len(ring), bool))
         engine.converge()
-        assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
+        assert_equal_to_a_fresh_converge(engine, options)
 
 
 @given(st.integers(1, 10**6), st.floats(0, 1), st.floats(0, 1.2))
