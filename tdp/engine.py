@@ -275,11 +275,11 @@ class _SearchResult(NamedTuple):
 
 class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
-    stamped for, and for a restart's (``_restart_tick``), its budget (cells a search takes: its look and raise past
-    it, the mend gives way to a restart), a restart's price and a reset's fills in those units, the cells its first
-    look at the cut may take (``_cut_rules``), the work its probe may do evenly with the mend's in those units
-    (``_flood_rules``), whether every tile is settled already (1: the hand-over stamps the frontier alone), and
-    whether to mend (0: a launch that only compiles)."""
+    stamped for, by the mend and by the restart it may give way to (as a reset leaves the round), its budget (cells a
+    search takes: its look and raise past it, the mend gives way to a restart), a restart's price and a reset's
+    fills in those units, the cells its first look at the cut may take (``_cut_rules``), the work its probe may do
+    evenly with the mend's in those units (``_flood_rules``), whether every tile is settled already (1: the hand-over
+    stamps the frontier alone), and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -2632,7 +2632,8 @@ class _Layers(_LayerArrays):
     def _restarted(self, outcome: "_MendResult", tick: int) -> int:
         """After a mend that gave up and searched from the source in the spare buffer, as :meth:`restart` would
         (its reset's ``tick``): that buffer holds the values from now on, and the one it replaces is filled with the
-        cap to be the next spare (one fill, as the reset's). Returns the search's buckets."""
+        cap to be the next spare (one fill, as the reset's). A restart's prices in time (``restart_s``, ``cell_s``)
+        stay the last search launch's: this one's time is the mend's too. Returns the search's buckets."""
         buffers = self._arrays.buffers
         buffers[self.current], self.spare = self.spare, buffers[self.current]
         self.spare.fill(self.cap)
