@@ -702,14 +702,14 @@ def test_a_goal_let_out_of_a_pocket_is_lowered_whole_and_prices_the_next_restart
 @pytest.mark.parametrize("probe_fills", [1.0, 1e9])
 def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(
         monkeypatch, neighbourhood, corner_cutting, probe_fills):
-    """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start:
-    it counts the cells a BFS by the stencil reaches (by rows where its steps are the straight ones, with the
-    diagonal ones or not; cell by cell with the knight's too) and the mend gives way to a restart at once; kept even
-    with the raise throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more
-    work than the count (before the race, the probe started once the raise had spent its share of the fills, at half
-    a cell per cell raised). The same ring round a far cell leaves the source most of the map: the probe tells
-    nothing - its work within its allowance and an eighth of the mend's, or kept even, its count stopped past
-    ``most_telling`` - and the pocket is mended."""
+    """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start: it
+    counts the cells a BFS by the stencil reaches (by rows where its steps are the straight ones, with the diagonal ones
+    or not; cell by cell with the knight's too) and the mend gives way to a restart at once; kept even with the raise
+    throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more work than
+    the count (before the race, the probe started once the raise had spent its share of the fills, at half a cell per
+    cell raised). The same ring round a far cell leaves the source most of the map: the probe tells nothing - its work
+    within its allowance and an eighth of the mend's, or kept even, its count stopped past ``most_telling`` - and the
+    pocket is mended."""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
     monkeypatch.setattr(engine_module, "PROBE_FILLS", probe_fills)
     rng = np.random.default_rng(11)
