@@ -893,6 +893,12 @@ def _sweep(header: ti.template(), rows, cols, tick):
     return tick + down + right
 
 
+def _first_round(tick: int) -> int:
+    """The round a layer starts again at after ``tick`` (a reset's, a restart's): the next multiple of 4, so that
+    settling's first round sweeps away from the source (``_sweep``)."""
+    return tick + -tick % 4
+
+
 def _relax_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """The per-tile ti.funcs of synchronous (Jacobi) iterations built on a layer kind's cell rules, and sampling.
     A layer's arrays: values (``src``/``dst`` or ``values``), ``pen``, ``stamps``, ``header`` (CHANGED ... SCANNED)."""
@@ -2325,7 +2331,7 @@ class _LayerArrays:
         its hand-over every stamp and key): three launches, 0.03 ms, fewer."""
         began = time.perf_counter()
         self.rebase()
-        self.tick += -self.tick % 4  # settling's first round sweeps away from the source (_sweep)
+        self.tick = _first_round(self.tick)
         self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
         self.mirrored = self.listed = self.round_open = False  # no round is open after a reset
         if tiles:
@@ -2614,7 +2620,7 @@ class _Layers(_LayerArrays):
             self.spare = self._array(self._arrays.buffers[0].shape)
             self.spare.fill(self.cap)
         looks = min(budget, int(CUT_SHARE * fills))
-        restart_tick = self.tick + -self.tick % 4  # as a reset leaves it
+        restart_tick = _first_round(self.tick)  # a restart in the launch starts where a reset would
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
                                min(int(PROBE_FILLS * fills), _NEVER),
                                int(self.tiles_settled), go=1), _MendResult)
