@@ -117,7 +117,7 @@ SEARCH_MARGIN = (TILE - 1 + 2 * PAD) * math.sqrt(2) + 1
 #: most (``sweeps_fitting``).
 RESTART_SHARE = 0.5
 #: A mend (``_LayerArrays._mend``) gives way to a restart once its look and raise pass this share of a restart's
-#: price, the cells the source reaches (the last search's count, or the count a mend since made: its probe's, at
+#: price, the cells the source reaches (the last search's count, or the count a mend since made: its first look's, at
 #: least the cells it lowered) and the reset's fills (a ski rental again: at most about 1 + MEND_SHARE times a
 #: restart, whatever the cut). Raising a cell is priced at RAISE_COST cells a search takes: measured on the 2-core VM
 #: a raise with its seed's relaxation costs 50-75 ns (mazes the cheapest), a cell a search takes 50-65 ns - the
@@ -134,24 +134,12 @@ RAISE_COST = 2
 #: map cost a mend 1.5 ms where a restart (the edits painted, the pocket searched) takes 0.6 - 3.3 ms before the
 #: seeds skipped the cells round a blocked one, 25x a fresh converge.
 EDIT_COST = 4
-#: A mend's probe (``_flood_rules``) counts the cells the source still reaches, racing the first look and the raise
-#: from the start: its work keeps even with theirs (in cells a search takes) until it has done this share of a
-#: reset's fills - the least a restart costs -, then one cell per PROBE_PACE of theirs. So a goal sealed in a pocket
-#: whose count costs less than a reset is counted before the raise has done more work than the count, and one that
-#: costs more at the slower pace, while where it can tell nothing (the source reaches most of the map) it costs the
-#: fills and an eighth more (a quarter, measured: a wall sealing off half a 4-cell maze 1.96x a fresh converge,
-#: against 1.77x, and 1.59x without the race). Before the race, the probe started once the raise had spent MEND_SHARE
-#: of the fills, at half a cell per cell raised: a goal sealed in 10,609 cells of nav2's warehouse map raised 12,609
-#: cells first, where now the probe counts them while the first look runs. A probe that kept even until it had done
-#: half the fills and stopped there left a goal sealed in a pocket it could not count by then to the raise alone
-#: (random 1024², 15x a fresh converge).
-PROBE_FILLS = 1.0
-PROBE_PACE = 8
-#: The probe's work: RAISE_COST a seed (a queued cell loaded from far: 40-70 ns measured on the 2-core VM, as much as a
-#: raised cell) and one per this many cells it counts (5 ns each). A 1-cell maze's cells are all seeds, an open map's
-#: row of hundreds of cells one; a seed priced as one, the probe's work ran at twice the raise's in a maze, and a box
-#: that reroutes half of one cost 1.85x a fresh converge, against 1.60x.
-PROBED_PER_SEED = 8
+#: A search from the source races a mend's first look and, where the look found the edits' sides apart (the goal may
+#: be sealed in a part of any size, or a pocket sealed off), its raise (``_race_rules``), in a spare buffer: RACE_LEAD
+#: cells taken for each cell the mend has looked at or raised (each about as dear as a search's). If it finishes
+#: first, it is the repair, a restart that cost its own cells and the mend's beside them, at most 1 + 1 / RACE_LEAD
+#: of them. It runs only where it could win (``race_lead``).
+RACE_LEAD = 2
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
 CUT_PARTS = 4096
@@ -160,18 +148,14 @@ CUT_PARTS = 4096
 #: 13-25 ns as a plain breadth-first fill, against 50-65 ns a cell a search takes): enough to tell that a box or a
 #: wall cut nothing - its sides meet round it within a few rings of cells - and to find a pocket or a goal sealed in
 #: of a few hundred cells, little against the raise it spares where it finds nothing. A/B on the 2-core VM: 0.5 made
-#: boxes and walls 5-6 % faster (no probe counts in vain after it) and the mend of a goal sealed in a pocket of
-#: 62-405 cells 7-32 %, and cost pockets of thousands of cells 1-12 % (it looks in vain); four times as much cost a
-#: 1024² map's pocket of 13,000 cells 1.5x.
+#: boxes and walls 5-6 % faster (no probe - the race's forerunner - counted in vain after it) and the mend of a goal
+#: sealed in a pocket of 62-405 cells 7-32 %, and cost pockets of thousands of cells 1-12 % (it looks in vain); four
+#: times as much cost a 1024² map's pocket of 13,000 cells 1.5x.
 CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
-#: A mend's ``trail``: rows 0-2 its first look's (parts, queue, marks: ``_cut_rules``), row 0 then its raised cells
-#: and seeds, row 3 its probe's queue (``_flood_rules``); in row 2 the probe's mark is the bit _PROBED, above the
-#: look's (its part + 1, in the bits _LOOKED).
-_TRAIL_ROWS, _PROBE_QUEUE = 4, 3
-_PROBED = 1 << 30
-_LOOKED = _PROBED - 1
+#: A mend's ``trail``: its first look's (parts, queue, marks: ``_cut_rules``), row 0 then its raised cells and seeds.
+_TRAIL_ROWS = 3
 #: Cells a search must take for its time to price a cell (``_Layers._fills``): a smaller one's time is mostly its
 #: launch and hand-over - a goal sealed in a pocket of 20 cells priced a cell at 12 µs, against 50-65 ns.
 PRICED_SEARCH = 4096
@@ -191,7 +175,8 @@ _DEFERRED = _STACKED + 1  # ... or among the cells the raise looks at again once
 #: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
-#: Padded cells a layer may have a side: a mend's probe packs a cell's row and column in one int32 (``_flood_rules``).
+#: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
+#: the cells), which 2**15 a side keeps well inside.
 MAX_SIDE = 1 << 15
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 16
@@ -277,8 +262,8 @@ class _MendRun(NamedTuple):
     """``mend``'s launch: the focus (padded layer coordinates; row -1: none), the round the frontier's tiles are
     stamped for, by the mend and by the restart it may give way to (as a reset leaves the round), its budget (cells a
     search takes: its look and raise past it, the mend gives way to a restart), a restart's price and a reset's
-    fills in those units, the cells its first look at the cut may take (``_cut_rules``), the work its probe may do
-    evenly with the mend's in those units (``_flood_rules``), whether every tile is settled already (1: the hand-over
+    fills in those units, the cells its first look at the cut may take (``_cut_rules``), the most a move adds to a
+    value (``_longest_move``), its race's lead (RACE_LEAD), whether every tile is settled already (1: the hand-over
     stamps the frontier alone), and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
@@ -289,25 +274,26 @@ class _MendRun(NamedTuple):
     restart: int
     fills: int
     looks: int
-    probe_budget: int
+    longest_move: int
+    lead: int
     settled: int
     go: int
 
 
 class _MendResult(NamedTuple):
     """What ``mend`` hands back: the buckets emptied, the cells left to lower (a focused mend's frontier), the cells
-    raised to the cap, the cells the source still reaches if counted (-1: not), its work in cells a search takes
-    (the probe's apart), the cells and seeds its probe counted and queued, whether it gave up for a restart (a
-    restart cost less than the rest of the mend, or its look and raise passed the budget), and the cells its lowering
-    took - having given up, its restart's search took (the buckets and the frontier then the search's)."""
+    raised to the cap, the cells the source still reaches if its look counted them (-1: not), its work in cells a
+    search takes (the race's apart), the cells its race took as the mend ran, whether it gave up for a restart (the
+    race finished first, a restart cost less than the rest of the mend, or its look and raise passed the budget),
+    and the cells its lowering took - having given up, its race's search took in all (the buckets and the frontier
+    then the race's)."""
 
     buckets: int
     frontier: int
     raised: int
     reached: int
     spent: int
-    probed: int
-    seeded: int
+    raced: int
     gave_up: int
     lowered: int
 
@@ -484,14 +470,19 @@ def sweeps_fitting(left_s: float, sweep_s: float, fewest: int, most: int) -> int
     return max(fewest, min(most, int(min(left_s / sweep_s, _NEVER))))
 
 
+def _longest_move(max_cost: float) -> int:
+    """The most a move adds to a priority, floored, on a layer whose free cells cost at most ``max_cost`` (1:
+    unweighted): a move of length L (1 to sqrt 5) adds at most L x ``max_cost`` to a value and L to the distance from
+    a focus, so floor(1 + sqrt 5 (max_cost + 1))."""
+    return math.floor(1 + math.sqrt(5) * (max_cost + 1))
+
+
 def _search_buckets(max_cost: float) -> int:
-    """The buckets of the search's ring (``_search_rules``) on a layer whose free cells cost at most ``max_cost`` (1:
-    unweighted). A bucket holds the cells whose priority (value, plus the distance from the focus if any) has that
-    floor. A move of length L (1 to sqrt 5) adds at most L x ``max_cost`` to a value and L to the distance, so a cell
-    joins a bucket at most floor(1 + sqrt 5 (max_cost + 1)) past the one being emptied: the ring is the next power
-    of 2 beyond, and at least MIN_RING."""
-    reach = math.floor(1 + math.sqrt(5) * (max_cost + 1))
-    return max(MIN_RING, 1 << reach.bit_length())
+    """The buckets of the search's ring (``_search_rules``) on a layer whose free cells cost at most ``max_cost``. A
+    bucket holds the cells whose priority (value, plus the distance from the focus if any) has that floor, and a
+    cell joins one at most ``_longest_move`` past the one being emptied: the ring is the next power of 2 beyond, and
+    at least MIN_RING."""
+    return max(MIN_RING, 1 << _longest_move(max_cost).bit_length())
 
 
 def _serial_limit(tiles: int) -> int:
@@ -1167,14 +1158,15 @@ def _bucket_rules() -> SimpleNamespace:
     return SimpleNamespace(unlink=unlink, link=link, clear=clear)
 
 
-def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
+def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     """The search from the initial state of a scalar layer: Dial's label-setting algorithm (Dijkstra's with buckets
     one cell wide), cell by cell on the calling thread, with A*'s order and stop when focused. Its fixed point is the
     one eqs. 5 and 10 define, bit for bit: a cell takes the smallest value + move length over its free neighbours,
     in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
-    ``_bucket_rules``."""
-    blocked, crossing, moves, move_cost, penalty = cell.blocked, cell.crossing, cell.moves, cell.move_cost, cell.penalty
+    ``_bucket_rules``. ``logged``: its ``links`` have a third row, which logs each cell it lowers from the cap
+    (``_race_rules``: a race that loses puts them back)."""
+    crossing, moves, move_cost, penalty = cell.crossing, cell.moves, cell.move_cost, cell.penalty
     buckets = _bucket_rules()
     unlink, link, clear = buckets.unlink, buckets.link, buckets.clear
 
@@ -1188,35 +1180,16 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return value + away
 
     @ti.func
-    def search(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), cap,
-               focus_row, focus_col):
-        """Lower ``values`` (the initial state: the cap everywhere, the source aside) bucket by bucket from the
-        source; with a focus (padded coordinates; row -1: none) stop once the bucket reached is SEARCH_MARGIN past
-        the focus's value. Returns (buckets emptied, cells still listed: the frontier a focused search leaves, cells
-        taken)."""
-        width, heads = values.shape[2], values.shape[1] * values.shape[2]
-        mask = links.shape[1] - heads - 1  # the ring's buckets, a power of 2, less 1
-        clear(links, heads)
-        listed, bucket, emptied = 0, 0, 0
-        i, j = header[SOURCE_ROW], header[SOURCE_COL]
-        if not blocked(pen[0, i, j]):
-            values[0, i, j] = 0.0
-            bucket = ti.i32(priority(0.0, i, j, focus_row, focus_col))
-            link(links, heads, i * width + j, bucket & mask)
-            listed = 1
-        taken = 0
-        while listed > 0 and not (focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
-            change = empty(values, pen, links, bucket, focus_row, focus_col)
-            listed += change[0]
-            taken += change[1]
-            bucket += 1
-            emptied += 1
-        return ti.Vector([emptied, listed, taken])
+    def log(links: ti.template(), heads, c):
+        """Log padded cell ``c`` (row-major) in row 2 of ``links``, its count at ``links[2, heads]``."""
+        links[2, links[2, heads]] = c
+        links[2, heads] += 1
 
     @ti.func
-    def empty(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col):
+    def empty(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col, cap):
         """Take every cell of ``bucket`` and lower its neighbours through it, listing each lowered one in the bucket
-        of its priority; returns (the change in the cells listed, the cells taken)."""
+        of its priority (logged, the first time it falls below ``cap``); returns (the change in the cells listed,
+        the cells taken)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         mask = links.shape[1] - heads - 1
         slot, listed, taken = bucket & mask, 0, 0
@@ -1232,8 +1205,11 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
                 cand += penalty(pen, 0, u, v, 0)
                 if cand < values[0, u, v]:
-                    values[0, u, v] = cand
                     there = u * width + v
+                    if ti.static(logged):
+                        if values[0, u, v] >= cap:
+                            log(links, heads, there)
+                    values[0, u, v] = cand
                     if links[1, there] == _UNLISTED:
                         listed += 1
                     else:
@@ -1266,19 +1242,19 @@ def _search_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 i, j = c // width, c % width
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
-    return SimpleNamespace(search=search, hand_over=hand_over, empty=empty, priority=priority, link=link,
-                           clear=clear)
+    return SimpleNamespace(hand_over=hand_over, empty=empty, priority=priority, link=link, unlink=unlink, clear=clear,
+                           log=log)
 
 
-def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespace:
+def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
     """A mend's first look at its edits (``_Layers._mend``): ``cut_off`` tells whether the cells they blocked cut the
     free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell
     (``_cell_rules``' ``steps``: they join the same cells as the whole stencil). Row 2 of a mend's ``trail`` marks
     the cells looked at (their part + 1), row 1 queues them (and logs them: nothing is taken off), row 0 holds each
-    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). The probe (``probing``: ``_flood_rules``')
-    keeps pace with it, its marks above the look's in row 2 (``_PROBED``)."""
+    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). A mend's race (``racing``:
+    ``_race_rules``) keeps its lead on it."""
     blocked, steps = cell.blocked, cell.steps
-    pace, counted = probing.pace, probing.counted
+    pace, over = racing.pace, racing.over
 
     @ti.func
     def at(part, field):
@@ -1306,7 +1282,7 @@ def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespa
     @ti.func
     def part_of(trail: ti.template(), c):
         """The part that marked padded cell ``c`` (row-major) when it looked at it (-1: none)."""
-        return (trail[2, c] & _LOOKED) - 1
+        return trail[2, c] - 1
 
     @ti.func
     def merge(trail: ti.template(), part, other):
@@ -1317,18 +1293,19 @@ def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespa
 
     @ti.func
     def cut_off(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
-                cells: ti.template(), penalties: ti.template(), cap, budget, probe):
+                cells: ti.template(), penalties: ti.template(), cap, budget, race, spare: ti.template(),
+                race_links: ti.template()):
         """Breadth-first from every free cell beside a cell the edits blocked, each a part of its own, in one queue:
         parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it
         joins. It stops once one part is left (every other merged into it or closed), the source's part ran dry, it
-        has looked at ``budget`` cells, the ``probe`` (kept abreast: ``_flood_rules``' ``pace``) has counted the
-        cells the source reaches, or the blocked cells have more than CUT_PARTS free cells beside them. If the
+        has looked at ``budget`` cells, the ``race`` (its lead times the cells looked at, in ``spare``) has
+        finished, or the blocked cells have more than CUT_PARTS free cells beside them. If the
         edits left the source's part closed, the cells in it are what a restart searches (none if they blocked the
         source); else the parts closed without the source - pockets sealed off - have their cells set to the cap at
         once (no raise). If every part merged into one, the edits cut nothing: a way round each blocked cell joins
         its neighbours, so a route through it has a way round too. Returns (the cells the source's closed part
         holds, -1 if none; cells looked at; 1 if it stopped short with parts apart - the source may lie in one
-        closed - else 0) and the probe."""
+        closed - else 0) and the race."""
         width = values.shape[2]
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
@@ -1346,10 +1323,10 @@ def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespa
                             live += 1
                         crowded |= live == most
         head, sealed = 0, -1
-        while not (crowded or lost or counted(probe)) and live > 1 and head < tail and head < budget and sealed < 0:
+        while not (crowded or lost or over(spare, race)) and live > 1 and head < tail and head < budget and sealed < 0:
             c = trail[1, head]
             head += 1
-            probe = pace(pen, trail, probe, head)
+            race = pace(spare, pen, race_links, race, head, cap)
             part = root(trail, part_of(trail, c))
             i, j = c // width, c % width
             for m in ti.static(steps):
@@ -1373,12 +1350,12 @@ def _cut_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespa
         for k in range(tail):
             c = trail[1, k]
             flags = trail[0, at(root(trail, part_of(trail, c)), _FLAGS)]
-            trail[2, c] &= _PROBED
+            trail[2, c] = 0
             if sealed >= 0:
                 reached += flags & _HOLDS_SOURCE
             elif flags & _CLOSED:
                 values[0, c // width, c % width] = cap
-        return ti.Vector([reached, head, ti.select(crowded or live > 1, 1, 0)]), probe
+        return ti.Vector([reached, head, ti.select(crowded or live > 1, 1, 0)]), race
 
     return SimpleNamespace(cut_off=cut_off)
 
@@ -1402,134 +1379,133 @@ def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
     return reached >= 0 and RAISE_COST * (restart - fills - reached) > reached + fills
 
 
-def most_telling(restart: int, fills: int) -> int:
-    """The most cells a source may reach for :func:`restart_is_cheaper` to hold (the same terms): a probe that has
-    counted more can tell nothing. Compiled into the mend as ``_telling``."""
-    return (RAISE_COST * (restart - fills) - fills - 1) // (RAISE_COST + 1)
+def race_lead(kept: int, looked: int, budget: int, lead: int) -> int:
+    """A mend's race's lead (``_race_rules``; ``lead``: RACE_LEAD) once its first look has taken ``looked`` cells
+    (none yet, or all, having found the edits' sides apart): none if ``kept`` cells - those nearer the source than
+    the edits, which keep their routes - are more than the race could take before the mend's ``budget`` (cells a
+    search takes) runs out, the look's cells and the most it can raise (RAISE_COST each) ``lead`` times: then the
+    race could only lose, and a pocket sealed far from the source is mended at the raise's cost alone. A pure rule,
+    compiled into the mend as ``_race_lead``."""
+    return lead if kept < lead * (looked + max(budget - looked, 0) // RAISE_COST) else 0
 
 
-def probe_work(seeds: int, cells: int) -> int:
-    """A mend's probe's work in cells a search takes, with ``seeds`` queued and ``cells`` counted: RAISE_COST a seed (a
-    queued cell loaded from far, 40-70 ns measured on the 2-core VM, as much as a raised cell) and one per
-    PROBED_PER_SEED cells (5 ns each) - a 1-cell maze's cells are all seeds, an open map's row of hundreds of cells
-    one. Compiled into the mend as ``_probe_work``."""
-    return RAISE_COST * seeds + cells // PROBED_PER_SEED
+_doomed, _race_lead = ti.func(restart_is_cheaper), ti.func(race_lead)
+_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED = range(8)  # a race's ints
+_POWERS = 31  # a search logs the bucket it had reached when it had taken 1, 2, 4 ... 2**30 cells (``_race_rules``)
 
 
-_doomed, _telling, _probe_work = ti.func(restart_is_cheaper), ti.func(most_telling), ti.func(probe_work)
-
-
-def _flood_rules(cell: SimpleNamespace) -> SimpleNamespace:
-    """A mend's probe of a restart's price: it counts the cells the source reaches, racing the mend's first look and
-    its raise (``pace``). It steps by the moves that cross no cell (``_cell_rules``' ``steps``: they reach the same
-    cells as the whole stencil) - where those are the four straight moves, with or without the four diagonal ones
-    (corners cut), a scanline fill of a few loads a cell, where the whole stencil takes forty. Its queue is row
-    ``_PROBE_QUEUE`` of a mend's ``trail``, its marks the ``_PROBED`` bit of row 2 (the first look's marks lie below
-    it). A probe is (head, tail, cells marked, the count past which it tells nothing, the work in cells a search
-    takes it may do evenly with the mend's): its queue of seeds is ``trail[_PROBE_QUEUE, head:tail]``, each a cell
-    marked, and head == tail once every cell the source reaches is counted. Its work is :func:`probe_work`'s."""
-    blocked, steps = cell.blocked, cell.steps
-    spans = all(max(abs(m.dr), abs(m.dc)) == 1 for m in steps)  # the straight steps, and the diagonal: fill by rows
-    reach = int(any(m.dr and m.dc for m in steps))  # a diagonal step reaches a column past a span in the rows beside
-
-    @ti.func
-    def open_cell(pen: ti.template(), trail: ti.template(), width, i, j):
-        """Whether padded cell (i, j) is free and not yet marked."""
-        return (trail[2, i * width + j] & _PROBED) == 0 and not blocked(pen[0, i, j])
+def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
+    """The search from the initial state (``_search_rules``), a bucket at a time: ``search`` runs one to its end, and
+    a mend runs one in a spare buffer at the initial state, racing its first look and its raise (``pace``): if it
+    finishes first, it is the repair - a restart that cost its own cells and the mend's beside them -, and a mend
+    that finishes first puts the buffer back (``clean``). A race is an int32 vector: the bucket it empties next, the cells listed, taken, the
+    buckets emptied, its lead (the cells it may take per cell the mend has looked at or raised), the focus (padded
+    coordinates; row -1: none), the powers of 2 of cells taken it has logged. Unfocused, it logs in row 1 of its
+    links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to empty when it
+    had first taken 2**k cells (-1: not yet), so that a mend knows how many cells lie nearer the source than its
+    edits (``kept``). A mend's race is ``logged`` (its ``links`` have a third row: ``_search_rules``), so that
+    ``clean`` finds the cells it lowered."""
+    blocked = cell.blocked
+    searching = _search_rules(cell, logged)
+    empty, priority, link, unlink, clear, log = (searching.empty, searching.priority, searching.link, searching.unlink,
+                                                 searching.clear, searching.log)
 
     @ti.func
-    def enqueue(trail: ti.template(), width, i, j, tail):
-        """Mark padded cell (i, j) and queue it as a seed at ``tail`` (its row and column packed in one int32:
-        ``(i << 16) | j``); returns the new tail."""
-        trail[_PROBE_QUEUE, tail] = (i << 16) | j
-        trail[2, i * width + j] |= _PROBED
-        return tail + 1
-
-    @ti.func
-    def queued(trail: ti.template(), k):
-        """The padded (row, column) of seed ``k`` of the queue (``enqueue``)."""
-        return trail[_PROBE_QUEUE, k] >> 16, trail[_PROBE_QUEUE, k] & 0xFFFF
-
-    @ti.func
-    def start(pen: ti.template(), header: ti.template(), trail: ti.template(), most, allowance):
-        """A probe with the source queued (none if blocked: it reaches nothing) that keeps even with a mend's work up to
-        ``allowance`` and stops past ``most`` cells counted, as it could no longer tell anything."""
+    def start(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), focus_row,
+              focus_col):
+        """A race from the source (none if blocked: it reaches nothing), ``values`` at the initial state, no lead.
+        A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``); the search's are
+        cleared (a mend's raise keeps cells waiting at the far end of their row 0)."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        if ti.static(not logged):
+            clear(links, heads)
+        race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0])
+        for k in range(_POWERS):
+            links[1, heads + k] = _UNLISTED
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
-        tail = 0
+        if ti.static(logged):
+            links[2, heads] = 0
         if not blocked(pen[0, i, j]):
-            tail = enqueue(trail, pen.shape[2], i, j, tail)
-        return ti.Vector([0, tail, tail, most, allowance])
+            if ti.static(logged):
+                log(links, heads, i * width + j)
+            values[0, i, j] = 0.0
+            race[_BUCKET] = ti.i32(priority(0.0, i, j, focus_row, focus_col))
+            link(links, heads, i * width + j, race[_BUCKET] & (links.shape[1] - heads - 1))
+            race[_LISTED] = 1
+        return race
 
     @ti.func
-    def counted(probe):
-        """Whether ``probe`` has counted every cell the source reaches."""
-        return probe[0] == probe[1]
+    def over(values: ti.template(), race):
+        """Whether ``race`` has finished: nothing listed, or, focused, the bucket it reached SEARCH_MARGIN past the
+        focus's value."""
+        focus_row, focus_col = race[_FOCUS_ROW], race[_FOCUS_COL]
+        past = focus_row >= 0 and race[_BUCKET] > values[0, focus_row, focus_col] + SEARCH_MARGIN
+        return race[_LISTED] == 0 or past
 
     @ti.func
-    def pace(pen: ti.template(), trail: ti.template(), probe, work):
-        """Go on with ``probe`` until its work matches the mend's ``work`` (cells a search takes: looked at, raised) -
-        evenly up to its allowance, one cell per PROBE_PACE of the mend's past it -, it has counted past its most,
-        or no seed is left; returns the new probe. With the straight steps (``spans``) a seed's row is filled left
-        and right at once, and a seed is queued for each run of open cells beside the filled span in the rows above
-        and below (a scanline fill: a few loads a cell), the span widened by a column each side where the steps
-        are diagonal too; else each seed queues its open neighbours."""
-        width = pen.shape[2]
-        head, tail, marked = probe[0], probe[1], probe[2]
-        even = ti.min(work, probe[4] + work // PROBE_PACE)  # its work's match: even, then one per PROBE_PACE
-        while head < tail and marked <= probe[3] and _probe_work(tail, marked) < even:
-            i, j = queued(trail, head)
-            head += 1
-            if ti.static(spans):
-                left, right = j, j
-                while open_cell(pen, trail, width, i, left - 1):
-                    left -= 1
-                    trail[2, i * width + left] |= _PROBED
-                while open_cell(pen, trail, width, i, right + 1):
-                    right += 1
-                    trail[2, i * width + right] |= _PROBED
-                marked += right - left
-                for row in ti.static((-1, 1)):
-                    run = False
-                    for v in range(left - reach, right + reach + 1):
-                        free = open_cell(pen, trail, width, i + row, v)
-                        if free and not run:
-                            tail = enqueue(trail, width, i + row, v, tail)
-                            marked += 1
-                        run = free
-            else:
-                for m in ti.static(steps):
-                    u, v = i + m.dr, j + m.dc
-                    if open_cell(pen, trail, width, u, v):
-                        tail = enqueue(trail, width, u, v, tail)
-                        marked += 1
-        probe[0], probe[1], probe[2] = head, tail, marked
-        return probe
+    def run(values: ti.template(), pen: ti.template(), links: ti.template(), race, most, cap):
+        """Go on with ``race`` until it has taken ``most`` cells or finished; returns it."""
+        race = log_powers(values, links, race)
+        while race[_TAKEN] < most and not over(values, race):
+            change = empty(values, pen, links, race[_BUCKET], race[_FOCUS_ROW], race[_FOCUS_COL], cap)
+            race[_LISTED] += change[0]
+            race[_TAKEN] += change[1]
+            race[_BUCKET] += 1
+            race[_EMPTIED] += 1
+            race = log_powers(values, links, race)
+        return race
 
     @ti.func
-    def unmark(trail: ti.template(), width, probe):
-        """Clear the marks of ``probe`` (``width``: the padded layer's): each seed's and, filling by spans, the
-        marked run of its row round it."""
-        for k in range(probe[1]):
-            i, j = queued(trail, k)
-            trail[2, i * width + j] &= _LOOKED
-            if ti.static(spans):
-                left, right = j - 1, j + 1
-                while trail[2, i * width + left] & _PROBED:
-                    trail[2, i * width + left] &= _LOOKED
-                    left -= 1
-                while trail[2, i * width + right] & _PROBED:
-                    trail[2, i * width + right] &= _LOOKED
-                    right += 1
+    def log_powers(values: ti.template(), links: ti.template(), race):
+        """Unfocused, log the bucket ``race`` empties next for each power of 2 its cells taken have reached since
+        it last logged; returns it."""
+        heads = values.shape[1] * values.shape[2]
+        while race[_FOCUS_ROW] < 0 and race[_LOGGED] < _POWERS and race[_TAKEN] >= 1 << race[_LOGGED]:
+            links[1, heads + race[_LOGGED]] = race[_BUCKET]
+            race[_LOGGED] += 1
+        return race
 
-    return SimpleNamespace(start=start, counted=counted, pace=pace, unmark=unmark)
+    @ti.func
+    def search(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), cap,
+               focus_row, focus_col):
+        """Lower ``values`` (the initial state) from the source to the end (or the focus); returns the race."""
+        return run(values, pen, links, start(values, pen, header, links, focus_row, focus_col), _NEVER, cap)
+
+    @ti.func
+    def pace(values: ti.template(), pen: ti.template(), links: ti.template(), race, work, cap):
+        """Go on with ``race`` up to its lead times the mend's ``work`` (cells looked at or raised)."""
+        return run(values, pen, links, race, race[_LEAD] * work, cap)
+
+    @ti.func
+    def clean(values: ti.template(), links: ti.template(), cap):
+        """Put ``values`` back at the initial state after a race that lost - the cells it lowered (its log) at the
+        cap, those still listed taken out of its buckets."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        for k in range(links[2, heads]):
+            c = links[2, k]
+            values[0, c // width, c % width] = cap
+            if links[1, c] != _UNLISTED:
+                unlink(links, heads, c)
+
+    @ti.func
+    def kept(links: ti.template(), heads, nearest):
+        """The most cells, a power of 2, that the last unfocused search's log (``links``, its heads at ``heads``)
+        says lay below ``nearest`` (0: none it can tell)."""
+        most = 0
+        for k in range(_POWERS):
+            if links[1, heads + k] >= 0 and links[1, heads + k] <= nearest:
+                most = 1 << k
+        return most
+
+    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, clean=clean, kept=kept)
 
 
-def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNamespace:
+def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
     them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
     the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
     moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
-    pace, counted = probing.pace, probing.counted
+    pace, over = racing.pace, racing.over
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, top, i, j):
@@ -1544,7 +1520,8 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
 
     @ti.func
     def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget, terms, probe, spent):
+                  trail: ti.template(), cells: ti.template(), cap, budget, spent, race, spare: ti.template(),
+                  race_links: ti.template()):
         """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
         them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
         cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
@@ -1559,19 +1536,15 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
         below its value through one that has (the seeds lower it). The raised cells go in row 0 of ``trail``.
 
         It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
-        search takes: the share of a restart's price the mend may spend). ``terms``: (a restart's price in those
-        cells, the reset's fills in it, 1 if the ``probe`` (``_flood_rules``) may tell more, else 0, the cells the
-        source reaches if counted, else -1). The probe keeps pace with the work (``pace``); once the cells the
-        source reaches are counted, the raise stops if a restart costs less than raising the rest (``_doomed``), and
-        the budget falls to a restart's share (``_budget_for``). Returns (cells raised, the budget, the cells the
-        source reaches (-1: not counted)) and the probe."""
-        top, raised, reached = 0, 0, terms[3]
+        search takes: the share of a restart's price the mend may spend), or the ``race`` (in ``spare``:
+        ``_race_rules``), its lead times the cells looked at (``spent``) and raised ahead of them, has finished.
+        Returns the cells raised and the race."""
+        top, raised = 0, 0
         last, waiting, rose = links.shape[1] - 1, 0, 0  # the cells waiting end at links[0, last], going down
-        budget = _budget_for(budget, terms[0], terms[1], reached)
         for k in range(cells.shape[0]):
             for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
                 top = push(values, links, cap, top, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
-        while top > 0 and spent + raised * RAISE_COST <= budget and not _doomed(reached, terms[0], terms[1]):
+        while top > 0 and spent + raised * RAISE_COST <= budget and not over(spare, race):
             top -= 1
             c = links[0, top]
             links[1, c] = _UNLISTED
@@ -1586,11 +1559,7 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
                 for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
                     if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
                         top = push(values, links, cap, top, i + m.dr, j + m.dc)  # reach of an edit)
-                if terms[2] > 0 and reached < 0:
-                    probe = pace(pen, trail, probe, spent + raised * RAISE_COST)
-                    if counted(probe):
-                        reached = probe[2]
-                        budget = _budget_for(budget, terms[0], terms[1], reached)
+                race = pace(spare, pen, race_links, race, spent + raised, cap)
             elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
                 links[1, c] = _DEFERRED
                 links[0, last - waiting] = c
@@ -1606,7 +1575,7 @@ def _raise_rules(cell: SimpleNamespace, probing: SimpleNamespace) -> SimpleNames
         while top > 0:  # over budget: the stack emptied, for the restart
             top -= 1
             links[1, links[0, top]] = _UNLISTED
-        return ti.Vector([raised, budget, reached]), probe
+        return raised, race
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -1647,9 +1616,9 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def lower_cut(values: ti.template(), pen: ti.template(), links: ti.template(), trail: ti.template(), seeds,
-                  focus_row, focus_col):
+                  focus_row, focus_col, cap):
         """The lowering of a repair: Dial's search from the seeds (``trail``'s first ``seeds``, their values set),
-        as :func:`search` from the source. Seeds span many buckets, more than the ring holds: they wait in the
+        as a search from the source. Seeds span many buckets, more than the ring holds: they wait in the
         trail and join the ring once their bucket is less than half a ring ahead (the trail is scanned every half
         ring, or jumped to when the ring runs dry). It runs to its end (or its focus): a restart would search every
         cell it lowers. Returns (buckets emptied, cells listed or waiting, seeds waiting: the frontier a focused
@@ -1681,7 +1650,7 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
                         trail[0, waiting] = c
                         waiting += 1
                 seeds, scan_at = waiting, bucket + half  # a seed lowered and listed since waits no more
-            change = empty(values, pen, links, bucket, focus_row, focus_col)
+            change = empty(values, pen, links, bucket, focus_row, focus_col, cap)
             listed += change[0]
             taken += change[1]
             bucket += 1
@@ -1858,9 +1827,9 @@ def _settle_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
 
 def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
-    """Searching from the initial state (a scalar layer's only): ``search``."""
-    rules = _search_rules(cell)
-    bucket_search, hand_over, store_penalty = rules.search, rules.hand_over, cell.store_penalty
+    """Searching from the initial state (a scalar layer's only): ``search``, and ``mend`` after edits."""
+    searching = _search_rules(cell)
+    bucket_search, hand_over, store_penalty = _race_rules(cell).search, searching.hand_over, cell.store_penalty
 
     @kernel
     def search(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
@@ -1871,57 +1840,69 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         for _ in range(run[_SEARCH.go]):
             found = bucket_search(values, pen, header, links, cap, run[_SEARCH.focus_row], run[_SEARCH.focus_col])
             hand_over(values, stamps, keys, links, run[_SEARCH.tick], True)
-            run[_SEARCHED.buckets], run[_SEARCHED.frontier] = found[0], found[1]
-            run[_SEARCHED.taken] = found[2]
+            run[_SEARCHED.buckets], run[_SEARCHED.frontier] = found[_EMPTIED], found[_LISTED]
+            run[_SEARCHED.taken] = found[_TAKEN]
 
-
-    probing = _flood_rules(cell)
-    raising = _raise_rules(cell, probing)
-    raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(rules).lower_cut
-    cut_off = _cut_rules(cell, probing).cut_off
+    racing = _race_rules(cell, logged=True)
+    raising = _raise_rules(cell, racing)
+    raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(searching).lower_cut
+    cut_off = _cut_rules(cell, racing).cut_off
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
-             trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, spare: t.values, run: t.ints):
+             trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, spare: t.values, race_links: t.queue,
+             run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
         thread (``_cut_rules``' ``cut_off``, ``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``'
-        ``lower_cut``, ``_flood_rules``' probe keeping pace with the first two; ``run``: a _MendRun), the tiles then
-        handed over to settling for round ``tick``; its results (a _MendResult) go in ``run``. The edits'
-        ``penalties`` are painted first (``_LayerArrays.paint`` holds them back for it). ``trail``: (_TRAIL_ROWS,
-        padded cells), its rows ``cut_off``'s, ``raise_cut``'s and the probe's, all 0 in row 2. A goal the edits
-        sealed in, it gives up for a restart as soon as it knows; giving up, it restarts in the same launch: the
-        search from the source (``_search_rules``) in ``spare``, a buffer at the initial state (the cap
-        everywhere), its tiles handed over for round ``restart_tick``."""
+        ``lower_cut``; ``run``: a _MendRun), the tiles then handed over to settling for round ``tick``; its results
+        (a _MendResult) go in ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them
+        back for it). ``trail``: (_TRAIL_ROWS, padded cells), its rows ``cut_off``'s and ``raise_cut``'s, all 0 in
+        row 2. A search from the source races the look and, where the look found the edits' sides apart, the raise
+        (``_race_rules``, ``race_lead``) in ``spare``, a buffer at the initial state (the cap everywhere), with
+        ``race_links`` (3 rows). If it finishes first, or the mend's work passes its budget, or the look finds the
+        goal sealed in so few cells that a restart costs less (``restart_is_cheaper``), the mend gives up and the
+        race runs to its end - the restart, in the same launch, its tiles handed over for round ``restart_tick``;
+        else the race's cells are put back at the cap."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
+            heads, nearest = values.shape[1] * values.shape[2], cap  # the edits' value nearest the source before them
             for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
                 i, j = cells[k, 0] + PAD, cells[k, 1] + PAD
+                nearest = ti.min(nearest, values[0, i, j])
                 store_penalty(pen, 0, i, j, 0, penalties[k])
                 if penalties[k] > MAX_COST:
                     values[0, i, j] = cap
             budget, restart, fills = run[_MEND.budget], run[_MEND.restart], run[_MEND.fills]
-            probe = probing.start(pen, header, trail, _telling(restart, fills), run[_MEND.probe_budget])
-            looked, probe = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], probe)
+            # cells below this value (less a move) did not route through the edits: the source keeps them
+            kept = racing.kept(links, heads, ti.i32(ti.min(nearest, 1e9)) - run[_MEND.longest_move])
+            race = racing.start(spare, pen, header, race_links, run[_MEND.focus_row], run[_MEND.focus_col])
+            race[_LEAD] = _race_lead(kept, 0, budget, run[_MEND.lead])
+            looked, race = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], race, spare,
+                                   race_links)
             reached, spent, raised = looked[0], looked[1], 0
-            if reached < 0 and probing.counted(probe):
-                reached = probe[2]
-            if not _doomed(reached, restart, fills):
-                telling = ti.select(looked[2] == 1 and reached < 0, 1, 0)
-                cut, probe = raise_cut(values, pen, header, links, trail, cells, cap, budget,
-                                       ti.Vector([restart, fills, telling, reached]), probe, spent)
-                raised, budget, reached = cut[0], cut[1], cut[2]
-            probing.unmark(trail, values.shape[2], probe)
+            if not (_doomed(reached, restart, fills) or racing.over(spare, race)):
+                budget = _budget_for(budget, restart, fills, reached)
+                race[_LEAD] = 0  # the edits cut nothing apart: the source keeps what it had, a restart costs as much
+                if looked[2] == 1 and reached < 0:
+                    race[_LEAD] = _race_lead(kept, spent, budget, run[_MEND.lead])
+                raised, race = raise_cut(values, pen, header, links, trail, cells, cap, budget, spent, race, spare,
+                                         race_links)
             spent += raised * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
-            run[_MENDED.probed], run[_MENDED.seeded] = probe[2], probe[1]
-            run[_MENDED.gave_up] = ti.select(spent > budget or _doomed(reached, restart, fills), 1, 0)
-            if run[_MENDED.gave_up]:  # a search from the initial state costs less: it runs in the spare buffer
-                found = bucket_search(spare, pen, header, links, cap, run[_MEND.focus_row], run[_MEND.focus_col])
-                hand_over(spare, stamps, keys, links, run[_MEND.restart_tick], True)
-                run[_MENDED.buckets], run[_MENDED.frontier], run[_MENDED.lowered] = found[0], found[1], found[2]
+            run[_MENDED.raced] = race[_TAKEN]
+            run[_MENDED.gave_up] = ti.select(
+                spent > budget or _doomed(reached, restart, fills) or racing.over(spare, race), 1, 0)
+            if run[_MENDED.gave_up]:  # the race runs to its end: the restart, its log the search's from now on
+                race = racing.run(spare, pen, race_links, race, _NEVER, cap)
+                for k in range(_POWERS):
+                    links[1, heads + k] = race_links[1, heads + k]
+                hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
+                run[_MENDED.buckets], run[_MENDED.frontier] = race[_EMPTIED], race[_LISTED]
+                run[_MENDED.lowered] = race[_TAKEN]
                 continue
+            racing.clean(spare, race_links, cap)
             seeds = seed_cut(values, pen, header, trail, cells, penalties, raised, cap)
-            found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col])
+            found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col], cap)
             run[_MENDED.spent] += found[3]
             run[_MENDED.lowered] = found[3]
             hand_over(values, stamps, keys, links, run[_MEND.tick], run[_MEND.settled] == 0)  # empties the buckets
@@ -2165,6 +2146,7 @@ class _LayerArrays:
         self.kernels = kernels
         self.lanes, (self.rows, self.cols), self.cap = kernels.lanes, side, float(cap)
         self.ring = _search_buckets(max_cost)  # the search's buckets
+        self.longest_move = _longest_move(max_cost)  # ... and the most a move adds to a value, at the dearest yet
         shape = (groups, self.rows + 2 * PAD, self.cols + 2 * PAD)
         stamps = ti.ndarray(ti.i32, (groups, -(-self.rows // TILE), -(-self.cols // TILE)))
         # the arrays the kernels take, behind properties that paint the edits held back first (``paint``)
@@ -2203,7 +2185,8 @@ class _LayerArrays:
         self.fresh = False
         self.links = None  # the search's buckets (``_search_rules``), made at the first search
         self.trail = None  # a mend's raised cells, then its seeds (``_raise_rules``), made at the first mend
-        self.spare = None  # ... and a buffer of values at the cap everywhere, where a mend that gives up restarts
+        self.spare = None  # ... and a buffer of values at the cap everywhere, where a mend's race searches
+        self.race_links = None  # ... with its own buckets and log (``_race_rules``)
         # the cells edited since the layer was last at its fixed point (None: it is not, or may not be): a converge
         # mends them cell by cell (:meth:`_mend`)
         self.edits: list[tuple[np.ndarray, np.ndarray]] | None = None
@@ -2303,9 +2286,10 @@ class _LayerArrays:
         launch (a mend, or the first launch of rounds on the calling thread), and anything else that reads the
         arrays paints it first."""
         if self.kernels.weighted:
-            ring = _search_buckets(float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0)))
-            if ring > self.ring:
-                self.ring, self.links = ring, None
+            dearest = float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0))
+            self.longest_move = max(self.longest_move, _longest_move(dearest))
+            if _search_buckets(dearest) > self.ring:
+                self.ring, self.links, self.race_links = _search_buckets(dearest), None, None
         if not self.lanes:
             self.unpainted.append((cells, penalties))
         else:
@@ -2371,6 +2355,7 @@ class _LayerArrays:
         scratch.links = ti.ndarray(ti.i32, (2, IDLE_ENTRIES))
         scratch.trail = ti.ndarray(ti.i32, (_TRAIL_ROWS, IDLE_ENTRIES))
         scratch.spare = scratch.dst
+        scratch.race_links = ti.ndarray(ti.i32, (3, IDLE_ENTRIES))
         for kernel in self.kernels.all:
             kernel(**{parameter.name: _idle_argument(parameter, scratch)
                       for parameter in inspect.signature(kernel).parameters.values()})
@@ -2601,11 +2586,13 @@ class _Layers(_LayerArrays):
         them (``_raise_rules``, ``_lower_rules``), so the work follows the cells that
         change - a sealed pocket's cells are raised once each, a dearer subtree lowered once each - and a small edit
         is one launch. With a focus, A*'s order and stop, the frontier handed over as a focused search's. Edits
-        whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once; a mend that gives
-        up restarts in its own launch (:meth:`_restarted`: a goal sealed in costs the look that finds it, a fill and
-        the pocket's search, in one launch where a restart took two more). A mend that finishes leaves the restart's
-        price as it found it (MEND_SHARE): the cells its probe counted, else at least those it lowered (a goal let out
-        of a pocket reaches all it lowered, where the last search took the pocket). Returns the buckets emptied."""
+        whose cells alone would cost more than the mend may spend (EDIT_COST each) restart at once. A search from the
+        source races the mend in a spare buffer; a mend that gives up - the race finished first, or the mend passed
+        its budget - lets it run to its end in the same launch (:meth:`_restarted`: a goal sealed in costs its
+        pocket's search and the mend's share beside it, in one launch where a restart took two more). A mend that
+        finishes leaves the restart's price as it found it (MEND_SHARE): the cells its look counted, else at least
+        those it lowered (a goal let out of a pocket reaches all it lowered, where the last search took the pocket).
+        Returns the buckets emptied."""
         fills = self._fills()
         restart = max(self.padded_cells if self.searched is None else self.searched + fills, 1)
         budget = int(MEND_SHARE * restart)
@@ -2619,14 +2606,16 @@ class _Layers(_LayerArrays):
             self.trail.fill(0)
             self.spare = self._array(self._arrays.buffers[0].shape)
             self.spare.fill(self.cap)
+        if self.race_links is None:  # made again when the ring widens, as the search's links
+            self.race_links = ti.ndarray(ti.i32, (3, self.padded_cells + self.ring))
+            self.race_links.fill(_UNLISTED)
         looks = min(budget, int(CUT_SHARE * fills))
         restart_tick = _first_round(self.tick)  # a restart in the launch starts where a reset would
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
-                               min(int(PROBE_FILLS * fills), _NEVER),
-                               int(self.tiles_settled), go=1), _MendResult)
+                               self.longest_move, RACE_LEAD, int(self.tiles_settled), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
-                          spare=self.spare, run=run)
+                          spare=self.spare, race_links=self.race_links, run=run)
         outcome = _outcome(_MendResult, run)
         if outcome.gave_up:  # most of the layer cut off or changed: the launch searched from the source instead
             return self._restarted(outcome, restart_tick)
@@ -2636,10 +2625,10 @@ class _Layers(_LayerArrays):
         return outcome.buckets
 
     def _restarted(self, outcome: "_MendResult", tick: int) -> int:
-        """After a mend that gave up and searched from the source in the spare buffer, as :meth:`restart` would
-        (its reset's ``tick``): that buffer holds the values from now on, and the one it replaces is filled with the
-        cap to be the next spare (one fill, as the reset's). A restart's prices in time (``restart_s``, ``cell_s``)
-        stay the last search launch's: this one's time is the mend's too. Returns the search's buckets."""
+        """After a mend that gave up and let its race search from the source in the spare buffer, as :meth:`restart`
+        would (its reset's ``tick``): that buffer holds the values from now on, and the one it replaces is filled
+        with the cap to be the next spare (one fill, as the reset's). A restart's prices in time (``restart_s``,
+        ``cell_s``) stay the last search launch's: this one's time is the mend's too. Returns the search's buckets."""
         buffers = self._arrays.buffers
         buffers[self.current], self.spare = self.spare, buffers[self.current]
         self.spare.fill(self.cap)

@@ -241,8 +241,8 @@ def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_
 
 
 def test_a_map_wider_than_the_engine_packs_is_a_clear_error():
-    """A mend's probe packs a padded cell's row and column in one int32: a side of 2**15 - 4 cells or more is refused
-    by name, not mis-indexed."""
+    """Kernels index a padded cell row-major in an int32 (the search's buckets after the cells): a side of 2**15 - 4
+    cells or more is refused by name, not mis-indexed."""
     wide = np.zeros((1, 32765), bool)
     with pytest.raises(ValueError, match="at most 32764 cells a side, got 1 x 32765"):
         tdp.DistanceField(tdp.GridMap(wide), (0, 0))

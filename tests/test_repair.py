@@ -86,19 +86,18 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans(), st.sampled_from([0.0, 1e9]),
-       st.sampled_from([(0.0, 10**9), (1.0, 4), (1e9, 1)]))
+       st.sampled_from([0, 2, 50]))
 def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, restart_share, sequence, neighbourhood,
-                                                    corner_cutting, with_nodes, cut_share, probe):
+                                                    corner_cutting, with_nodes, cut_share, race_lead):
     """... also when every repair that takes more than a slice restarts instead (share 0), and when some do, in
     the middle of a round (a tiny share); a mend's first look at what its edits cut off left out, or run to the
-    end (every pocket it seals found and capped before the raise); its probe of the cells the source reaches left
-    out, or run until it can tell nothing more (a goal sealed in restarted as soon as it is counted). Every mend
-    leaves its trail's marks clear for the next."""
+    end (every pocket it seals found and capped before the raise); its race from the source held back until the
+    mend gives up, as it is, or far ahead of the raise (it wins whenever it can). Every mend leaves its trail's
+    marks clear for the next, and its spare buffer and race's buckets as it found them."""
     launch_rounds(monkeypatch, serially)
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
     monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)  # a mend's look at the cut: none, or to the end
-    monkeypatch.setattr(engine_module, "PROBE_FILLS", probe[0])  # the probe: none, as it is, or even to the end
-    monkeypatch.setattr(engine_module, "PROBE_PACE", probe[1])
+    monkeypatch.setattr(engine_module, "RACE_LEAD", race_lead)
     monkeypatch.setattr(engine_module, "_FEWEST_SWEEPS", 1 if restart_share < 0.5 else 16)
     rows, cols, density, seed, operations = sequence
     rng = np.random.default_rng(seed)
@@ -121,11 +120,15 @@ def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, resta
 
 
 def assert_no_marks_left(engine: Engine) -> None:
-    """A mend's first look and its probe mark the cells they reach in row 2 of its trail and must clear them all:
-    the next mend reads a mark as a cell already reached."""
-    trail = engine._goal.trail
-    if trail is not None:
-        assert not trail.to_numpy()[2].any()
+    """A mend's first look marks the cells it reaches in row 2 of its trail and must clear them all: the next mend
+    reads a mark as a cell already reached. Its race must leave the spare buffer at the cap everywhere (the next
+    race starts from it) and its buckets empty."""
+    layers = engine._goal
+    if layers.trail is not None:
+        assert not layers.trail.to_numpy()[2].any()
+        assert (layers.spare.to_numpy() == layers.cap).all()
+        links = layers.race_links.to_numpy()
+        assert (links[1, :layers.padded_cells] == -1).all() and (links[0, layers.padded_cells:] == -1).all()
 
 
 @pytest.mark.parametrize("serially", [True, False])
@@ -390,15 +393,14 @@ def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
 
 @pytest.mark.parametrize("corner_cutting, weighted", [(False, False), (True, False), (False, True)])
 @pytest.mark.parametrize("cut_share", [0.0, 1e9])
-def test_a_goal_sealed_in_a_pocket_is_restarted_once_the_probe_has_counted_the_pocket(monkeypatch, corner_cutting,
-                                                                                       weighted, cut_share):
+def test_a_goal_sealed_in_a_pocket_is_restarted_as_soon_as_the_race_has_searched_the_pocket(monkeypatch, corner_cutting,
+                                                                                             weighted, cut_share):
     """Sealing the goal in cuts every other cell off: a mend would raise them all, where a restart searches the
-    pocket. The mend's probe counts the cells the source still reaches, and their price (with the reset's) caps its
-    budget: with MEND_SHARE so large that raising the whole map fits the budget a whole search prices, a goal sealed
-    in a pocket - or under a box - still goes to a restart, while the same ring round a far cell (the source
-    reaches most of the map) is mended, on a binary map and on one with costs; so it does where the mend's first
-    look at the cut (``_cut_rules``) finds the pocket before anything rises. Every repair equals a fresh
-    converge."""
+    pocket. The mend's race searches the pocket from the source while the raise runs: with MEND_SHARE so large that
+    raising the whole map fits the budget a whole search prices, a goal sealed in a pocket - or under a box - still
+    goes to a restart, while the same ring round a far cell (the source reaches most of the map) is mended, on a
+    binary map and on one with costs; so it does where the mend's first look at the cut (``_cut_rules``) finds the
+    pocket before anything rises. Every repair equals a fresh converge."""
     monkeypatch.setattr(engine_module, "MEND_SHARE", 3.0)
     monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)
     rng = np.random.default_rng(5)
@@ -452,7 +454,7 @@ def mend_runs(monkeypatch, engine: Engine) -> list[np.ndarray]:
 
 def test_an_edit_with_more_sides_than_the_look_follows_is_raised_and_mended_exactly():
     """An edit of thousands of scattered cells has more free cells beside them than a mend's first look follows
-    (CUT_PARTS): the look is skipped, and the raise, the probe and the lowering alone repair to a fresh converge's
+    (CUT_PARTS): the look is skipped, and the raise, the race and the lowering alone repair to a fresh converge's
     values - here with a pocket sealed off among the scattered cells."""
     rng = np.random.default_rng(8)
     occupied = rng.random((160, 160)) < 0.1
@@ -532,8 +534,9 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
     goal in, it counts exactly the cells the whole stencil still joins to the goal (a plain BFS here) and restarts
     without raising a cell; sealing a pocket off elsewhere, the pocket's cells go to the cap there and then, so the
     raise lifts only cells outside it whose value rose; a box that cuts nothing off is mended. Each repair equals a
-    fresh converge."""
+    fresh converge. (No race from the source: it would search the goal's pocket before the look has counted it.)"""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)  # the look is not cut short by the reset's price
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 0)
     rng = np.random.default_rng(int(density * 10) + corner_cutting)
     occupied = rng.random((60, 70)) < density
     goal = (30, 35)
@@ -699,19 +702,15 @@ def test_a_goal_let_out_of_a_pocket_is_lowered_whole_and_prices_the_next_restart
 
 
 @pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (16, True), (8, True)])
-@pytest.mark.parametrize("probe_fills", [1.0, 1e9])
-def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_can_tell_nothing(
-        monkeypatch, neighbourhood, corner_cutting, probe_fills):
-    """With no first look, a goal sealed in a pocket is found by the probe racing the raise from the mend's start: it
-    counts the cells a BFS by the stencil reaches (by rows where its steps are the straight ones, with the diagonal ones
-    or not; cell by cell with the knight's too) and the mend gives way to a restart at once; kept even with the raise
-    throughout (a reset's fills, its allowance as it is, come from measured times), the raise has done no more work than
-    the count (before the race, the probe started once the raise had spent its share of the fills, at half a cell per
-    cell raised). The same ring round a far cell leaves the source most of the map: the probe tells nothing - its work
-    within its allowance and an eighth of the mend's, or kept even, its count stopped past ``most_telling`` - and the
-    pocket is mended."""
+def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_its_lead_where_the_mend_wins(
+        monkeypatch, neighbourhood, corner_cutting):
+    """With no first look to count it (its sides apart), a goal sealed in a pocket is found by the race: its search
+    from the source takes every cell a BFS of the stencil reaches while the raise runs, the raise stops as soon as it
+    has (one cell before, its lead called for fewer), and the mend gives up with the race as its restart. The same
+    ring round a far cell: the last search's log says the source keeps most of the map, more than the race could
+    take before the mend's budget runs out - no race, and the mend finishes."""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
-    monkeypatch.setattr(engine_module, "PROBE_FILLS", probe_fills)
+    lead = engine_module.RACE_LEAD
     rng = np.random.default_rng(11)
     occupied = rng.random((120, 120)) < 0.15
     goal = (60, 60)
@@ -720,27 +719,18 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
     engine = Engine(occupied, goal, **options)
     engine.converge()
     runs = mend_runs(monkeypatch, engine)
-    width = occupied.shape[1]  # one seed's row past a bound at most
     for centre, by in ((goal, "search"), (farthest(engine), "mend")):
         ring = ring_round(occupied, centre, 12)
         engine.set_cells(ring, np.ones(len(ring), bool))
         engine.converge()
-        launch = engine_module._MendRun(*runs[-1][:len(engine_module._MendRun._fields)])
         outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
-        probed = engine_module.probe_work(outcome.seeded, outcome.probed)
-        assert engine.converged_by() == by
+        assert engine.converged_by() == by and outcome.raised > 0
         if by == "search":
-            assert outcome.gave_up and outcome.reached == reachable_by_the_stencil(engine.occupied, goal,
-                                                                                   corner_cutting, neighbourhood)
-            assert outcome.raised > 0
-            if probe_fills > 1:
-                assert outcome.raised * engine_module.RAISE_COST <= probed + engine_module.RAISE_COST
+            reached = reachable_by_the_stencil(engine.occupied, goal, corner_cutting, neighbourhood)
+            assert outcome.gave_up and outcome.raced == outcome.lowered == reached
+            assert lead * (outcome.raised - 1) < reached
         else:
-            assert not outcome.gave_up and outcome.reached == -1
-            if probe_fills > 1:
-                assert outcome.probed <= engine_module.most_telling(launch.restart, launch.fills) + 1 + 2 * width
-            else:
-                assert probed <= launch.probe_budget + outcome.spent // engine_module.PROBE_PACE + 2 * width
+            assert not outcome.gave_up and outcome.raced == 0
         assert_equal_to_a_fresh_converge(engine, options)
         assert_no_marks_left(engine)
         engine.set_cells(ring, np.zeros(len(ring), bool))
@@ -748,18 +738,48 @@ def test_the_probe_counts_a_goal_sealed_in_as_the_raise_runs_and_stops_where_it_
         assert_equal_to_a_fresh_converge(engine, options)
 
 
-@given(st.integers(1, 10**6), st.floats(0, 1), st.floats(0, 1.2))
-def test_the_probe_stops_exactly_where_its_count_could_no_longer_call_for_a_restart(restart, fills_share,
-                                                                                    reached_share):
-    """``most_telling`` is the largest count for which ``restart_is_cheaper`` holds: the probe stops past it, and
-    a restart is never called for a count above it, nor for none (-1)."""
-    fills = int(fills_share * restart)
-    most = engine_module.most_telling(restart, fills)
-    reached = int(reached_share * (restart - fills))
-    assert engine_module.restart_is_cheaper(reached, restart, fills) == (reached <= most)
-    assert not engine_module.restart_is_cheaper(most + 1, restart, fills)
-    assert most < 0 or engine_module.restart_is_cheaper(most, restart, fills)
-    assert not engine_module.restart_is_cheaper(-1, restart, fills)
+@given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6), st.integers(0, 4))
+def test_a_race_leads_unless_the_cells_kept_outnumber_what_it_could_take_before_the_budget_runs_out(
+        kept, looked, budget, more, lead):
+    """``race_lead``: the lead or none; none for more cells kept, never for a larger budget or more cells looked at
+    (the race could take more before the mend gives up); and none where the cells kept alone outnumber the lead
+    times the whole budget."""
+    given_lead = engine_module.race_lead(kept, looked, budget, lead)
+    assert given_lead in (0, lead)
+    assert engine_module.race_lead(kept + more, looked, budget, lead) <= given_lead
+    assert engine_module.race_lead(kept, looked, budget + more, lead) >= given_lead
+    assert engine_module.race_lead(kept, looked + more, budget, lead) >= given_lead or looked + more > budget
+    assert kept < lead * max(budget, looked) or given_lead == 0
+
+
+@pytest.mark.parametrize("neighbourhood, weighted", [(16, False), (8, True), (4, False)])
+def test_a_search_logs_how_far_it_had_reached_at_each_power_of_two_cells(neighbourhood, weighted):
+    """An unfocused search logs the bucket it was about to empty when it had first taken 2**k cells: 2**k cells lie
+    below it in the field it leaves (counted by numpy) and fewer below the bucket before. So does a mend's race that
+    won (a goal sealed in), its log the search's from then on; a focused search logs nothing."""
+    rng = np.random.default_rng(13)
+    occupied = rng.random((70, 90)) < 0.25
+    goal = (35, 45)
+    occupied[goal] = False
+    engine = Engine(occupied, goal, neighbourhood=neighbourhood, cost=1 + 3 * rng.random(occupied.shape) if weighted
+                    else None)
+
+    def log() -> np.ndarray:
+        layers = engine._goal
+        return layers.links.to_numpy()[1, layers.padded_cells:layers.padded_cells + engine_module._POWERS]
+
+    for edit in (None, ring_round(occupied, goal, 6)):
+        if edit is not None:
+            engine.set_cells(edit, np.ones(len(edit), bool))
+        engine.converge()
+        values = engine.goal_distances()[np.isfinite(engine.goal_distances())]
+        logged = [(k, bucket) for k, bucket in enumerate(log()) if bucket >= 0]
+        assert len(logged) == int(np.log2(len(values))) + 1
+        for k, bucket in logged:
+            assert np.count_nonzero(values < bucket) >= 2 ** k > np.count_nonzero(values < bucket - 1)
+    engine.set_goal((2, 2))
+    engine.converge(focus=(60, 80))
+    assert (log() == -1).all()
 
 
 @pytest.mark.parametrize("focused", [False, True])
