@@ -21,15 +21,23 @@ of the optimal route from the farthest reachable cell, a wall of 16 cells across
 square ring of obstacles, side an eighth of the map's, around the farthest reachable cell: every cell inside rises
 to inf), the same pocket opened again (the ring removed, from the sealed field), the goal sealed in (a ring of side
 a sixteenth of the map's around it: every cell outside rises to inf, where a restart searches the few inside), the
-goal let out again, and a goal move. Each edit is timed (``set_occupied``, ``set_goal``), then its ``converge()``
-(the edit undone, untimed, between repeats); the repair is checked bit for bit against a fresh field's converge()
-on the edited map and set against that field's from-scratch converge(), the two timed in turn: the ratio is a
-repair's - the edit and its converge, what a user pays (the goal layer paints an edit in the converge's launch) -
-to the from-scratch converge's, again the median of each pair's (as many pairs as fill about REPAIR_PAIRS_S
-seconds of from-scratch converges, from the repeats up to MAX_REPAIR_PAIRS); the converge's alone beside it. A
-repair's work follows the cells it changes: each reports how many cells' distances it changed, its converge's time
-per changed cell, and the from-scratch converge's per cell it reaches; and the edit with its converge timed again
-back to back, with no other field's converge between them (caches warm, as in a planner's loop).
+goal let out again, the goal sealed in a room (a ring of side a quarter of the map's: a twentieth to a tenth of the
+cells inside, which a restart searches while a mend would raise the rest), and a goal move. Each edit is timed
+(``set_occupied``, ``set_goal``), then its ``converge()`` (the edit undone, untimed, between repeats); the repair
+is checked bit for bit against a fresh field's converge() on the edited map and set against that field's
+from-scratch converge(), the two timed in turn: the ratio is a repair's - the edit and its converge, what a user
+pays (the goal layer paints an edit in the converge's launch) - to the from-scratch converge's, again the median
+of each pair's (as many pairs as fill about REPAIR_PAIRS_S seconds of from-scratch converges, from the repeats up
+to MAX_REPAIR_PAIRS); the converge's alone beside it. A repair's work follows the cells it changes: each reports
+how many cells' distances it changed, its converge's time per changed cell, and the from-scratch converge's per
+cell it reaches; and the edit with its converge timed again back to back, with no other field's converge between
+them (caches warm, as in a planner's loop).
+
+Doors (not with --quick): on the 1-cell perfect maze of side 512 with its corner goal, a door closes - one cell of
+the optimal route from the farthest reachable cell - and the goal keeps the cells on its side: DOOR_SHARES of the
+cells it reached, the cell picked along the route for each (the maze is a tree: any cell of it cuts it in two).
+Where the goal keeps few cells a restart searches them; where it keeps most, a mend raises the rest to inf; in
+between neither side can be told cheaply, and each is timed as a repair.
 """
 from __future__ import annotations
 
@@ -70,7 +78,9 @@ WALL = 16
 #: The field against scipy's (float64) Dijkstra: float32 sums of sqrt 2 and sqrt 5 along routes of 10,000+ moves
 #: (mazes with 2- and 4-cell corridors) drift up to 3e-5 from the float64 ones; straight moves alone are exact.
 EQUAL_RTOL = 1e-4
-REPAIRS = ("box", "wall", "seal", "open", "goal-seal", "goal-open", "goal")
+REPAIRS = ("box", "wall", "seal", "open", "goal-seal", "goal-open", "goal-room", "goal")
+#: The shares of the cells it reached that the goal keeps when a door closes on the 1-cell maze (``doors``).
+DOOR_SHARES = (0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.9)
 #: Repairs are timed in pairs with a from-scratch converge until the from-scratch side adds up to about this many
 #: seconds (at most MAX_REPAIR_PAIRS pairs, at least the repeats): on a map that converges in 10-30 ms five pairs
 #: left a goal move, which is a restart by construction, anywhere in 0.85-1.25x.
@@ -240,12 +250,14 @@ def route_middle(field: tdp.DistanceField, reference: np.ndarray) -> tuple[tuple
     return path[middle], (after[0] - path[middle][0], after[1] - path[middle][1])
 
 
-def pocket_ring(field: tdp.DistanceField, reference: np.ndarray, around_goal: bool) -> list[tuple[int, int]]:
+def pocket_ring(field: tdp.DistanceField, reference: np.ndarray, around_goal: bool,
+                side_share: float = 1 / 16) -> list[tuple[int, int]]:
     """The free cells of a square ring around the farthest reachable cell, side an eighth of the map's, or around
-    the goal, side a sixteenth (clipped to the map, whose edge closes it): blocked, it seals off the pocket inside."""
+    the goal, side ``side_share`` of it (clipped to the map, whose edge closes it): blocked, it seals off the pocket
+    inside."""
     rows, cols = reference.shape
     if around_goal:
-        (r, c), half = field.goal, max(max(rows, cols) // 32, 2)
+        (r, c), half = field.goal, max(int(max(rows, cols) * side_share / 2), 2)
     else:
         reachable = np.where(np.isfinite(reference), reference, -1.0)
         r, c = (int(v) for v in np.unravel_index(np.argmax(reachable), reference.shape))
@@ -260,10 +272,10 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
     """(apply, undo) of one repair case on a converged field; an opening leaves the field sealed (and converged)
     until its undo."""
     goal = field.goal
-    if kind in ("seal", "open", "goal-seal", "goal-open"):
-        ring = pocket_ring(field, reference, kind.startswith("goal"))
+    if kind in ("seal", "open", "goal-seal", "goal-open", "goal-room"):
+        ring = pocket_ring(field, reference, kind.startswith("goal"), 1 / 4 if kind == "goal-room" else 1 / 16)
         seal, unseal = (lambda: field.set_occupied(ring)), (lambda: field.set_occupied(ring, False))
-        if kind.endswith("seal"):
+        if kind.endswith("seal") or kind == "goal-room":
             return seal, unseal
         seal()
         field.converge()
@@ -287,12 +299,17 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
 
 def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int,
                    stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
-    """An edit, then converge(), from the converged field, against a fresh field's from-scratch converge() on the
-    edited map, the two timed in turn; the ratio - of the edit and the converge together, and of the converge
-    alone - is the median of each pair's (the VM's speed drifts: pairing keeps it out of the ratio). The field is
-    left on its map, converged."""
+    """A repair case (``repair_edit``), timed by ``measure_edit``."""
     before = field.occupied.copy()
-    apply, undo = repair_edit(field, kind, reference)
+    return measure_edit(field, kind, *repair_edit(field, kind, reference), before, repeats, stencil)
+
+
+def measure_edit(field: tdp.DistanceField, kind: str, apply, undo, before: np.ndarray, repeats: int,
+                 stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
+    """An edit (``apply``, undone by ``undo``), then converge(), from the converged field (its map was ``before``),
+    against a fresh field's from-scratch converge() on the edited map, the two timed in turn; the ratio - of the
+    edit and the converge together, and of the converge alone - is the median of each pair's (the VM's speed drifts:
+    pairing keeps it out of the ratio). The field is left on its map, converged."""
     apply()
     fresh = field_on(field.occupied, field.goal, stencil)
     undo()
@@ -338,6 +355,34 @@ def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, r
             "equal": bool(np.array_equal(repaired, fresh.distances()))}
 
 
+def doors(repeats: int) -> list[dict]:
+    """A door closes on the 1-cell maze of side 512 (its corner goal): for each of DOOR_SHARES, the cell of the
+    optimal route from the farthest reachable cell whose closing leaves the goal's side nearest that share of the
+    cells it reached (scipy's labels of the free cells, the stencil's 8-connected reach), timed as a repair
+    (``measure_edit``)."""
+    (_, occupied, goal), = [case for case in maze_cases(512, 1) if case[0].endswith("corner")]
+    field = field_on(occupied, goal)
+    field.converge()
+    reference = field.distances().copy()
+    reached = np.count_nonzero(np.isfinite(reference))
+    far = tuple(int(v) for v in np.unravel_index(np.argmax(np.where(np.isfinite(reference), reference, -1)),
+                                                 reference.shape))
+    shares = []
+    for cell in field.path(far)[1:-1]:
+        closed = occupied.copy()
+        closed[cell] = True
+        labels, _ = ndimage.label(~closed, structure=np.ones((3, 3)))
+        shares.append((np.count_nonzero(labels == labels[goal]) / reached, cell))
+    out = []
+    for share in DOOR_SHARES:
+        kept, cell = min(shares, key=lambda pair: abs(pair[0] - share))
+        apply, undo = (lambda c=cell: field.set_occupied([c])), (lambda c=cell: field.set_occupied([c], False))
+        result = measure_edit(field, f"door {kept:.0%}", apply, undo, occupied, repeats)
+        out.append({"share": kept, "cell": list(cell), **result})
+        print(f"  door keeping {kept:.1%}: {result['ratio']:.2f}x", flush=True)
+    return out
+
+
 def figure(results: list[dict], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
@@ -352,7 +397,7 @@ def figure(results: list[dict], path: Path) -> None:
     left.set_xlabel("from-scratch converge() / scipy Dijkstra (lower is faster)")
     repaired = [r for r in results if r.get("repairs")]
     colours = dict(zip(REPAIRS, ["tab:green", "tab:orange", "tab:purple", "tab:cyan", "tab:brown", "tab:olive",
-                                 "tab:red"]))
+                                 "tab:pink", "tab:red"]))
     width = 0.8 / len(colours)
     for k, kind in enumerate(colours):  # one row per map, its changes side by side
         ratios = [next(q["ratio"] for q in r["repairs"] if q["kind"] == kind) for r in repaired]
@@ -406,10 +451,11 @@ def main() -> None:
                   f"{q['ratio']:.3f}", f"{q['converge_ratio']:.3f}", str(q["changed"]),
                   f"{q['converge_ns_per_changed']:.0f}", f"{q['scratch_ns_per_reached']:.0f}", str(q["equal"])]
                  for r in results for q in r.get("repairs", [])])
-    summary = summarise(results)
+    closing = [] if args.quick else doors(args.repeats)
+    summary = summarise(results, closing)
     print(summary)
-    save_results("convergence-quick" if args.quick else "convergence", {"results": results, "summary": summary},
-                 lambda png: figure(results, png))
+    save_results("convergence-quick" if args.quick else "convergence",
+                 {"results": results, "doors": closing, "summary": summary}, lambda png: figure(results, png))
 
 
 def optional(result: dict, reference: str) -> list[str]:
@@ -418,14 +464,15 @@ def optional(result: dict, reference: str) -> list[str]:
     return ["-", "-"] if ms is None else [f"{ms:.1f}", f"{ratio:.2f}"]
 
 
-def summarise(results: list[dict]) -> dict:
+def summarise(results: list[dict], closing: list[dict]) -> dict:
     """The issue's figures: median and worst from-scratch ratio to scipy's Dijkstra (worst on maps of
     CONVERGE_LARGE cells or more), the worst to tcod's, the median repair ratio (the edit and its converge) for
     local changes (box, wall) and the worst for any change, the converge's alone for both; for local changes the
     median share of the reachable cells a repair changes, its converge's time per changed cell and a from-scratch
     converge's per reached cell (a repair's work follows the cells it changes); and the slowest 9-cell box repair on
-    a 256² map (its converge, with its edit, and the two back to back with no other field's converge between)."""
-    repairs = [q for r in results for q in r.get("repairs", [])]
+    a 256² map (its converge, with its edit, and the two back to back with no other field's converge between); the
+    worst door (``doors``: ``closing``) among any change's."""
+    repairs = [q for r in results for q in r.get("repairs", [])] + closing
     local = [q for q in repairs if q["kind"] in ("box", "wall")]
     boxes_256 = [q for r in results if r["map"].startswith("random 256² ") for q in r.get("repairs", [])
                  if q["kind"] == "box"]
