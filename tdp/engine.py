@@ -1389,22 +1389,28 @@ def race_lead(kept: int, looked: int, budget: int, lead: int) -> int:
     return lead if kept < lead * (looked + max(budget - looked, 0) // RAISE_COST) else 0
 
 
-_doomed, _race_lead = ti.func(restart_is_cheaper), ti.func(race_lead)
+def logged_cells(step: int) -> int:
+    """The cells a search has taken when it logs ``step`` (``_race_rules``): four steps to each doubling, 1, 1, 1, 1,
+    2, 2, 3, 3, 4, 5, 6, 7, 8, 10 ... (2**(step // 4) x (1 + (step % 4) / 4), floored)."""
+    return (1 << (step // 4)) + (((step % 4) << (step // 4)) >> 2)
+
+
+_doomed, _race_lead, _logged_cells = ti.func(restart_is_cheaper), ti.func(race_lead), ti.func(logged_cells)
 _BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED = range(8)  # a race's ints
-_POWERS = 31  # a search logs the bucket it had reached when it had taken 1, 2, 4 ... 2**30 cells (``_race_rules``)
+_LOG_STEPS = 120  # the steps of a search's log, up to 1.75 x 2**29 cells (``logged_cells``)
 
 
 def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     """The search from the initial state (``_search_rules``), a bucket at a time: ``search`` runs one to its end, and
     a mend runs one in a spare buffer at the initial state, racing its first look and its raise (``pace``): if it
     finishes first, it is the repair - a restart that cost its own cells and the mend's beside them -, and a mend
-    that finishes first puts the buffer back (``clean``). A race is an int32 vector: the bucket it empties next, the cells listed, taken, the
-    buckets emptied, its lead (the cells it may take per cell the mend has looked at or raised), the focus (padded
-    coordinates; row -1: none), the powers of 2 of cells taken it has logged. Unfocused, it logs in row 1 of its
-    links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to empty when it
-    had first taken 2**k cells (-1: not yet), so that a mend knows how many cells lie nearer the source than its
-    edits (``kept``). A mend's race is ``logged`` (its ``links`` have a third row: ``_search_rules``), so that
-    ``clean`` finds the cells it lowered."""
+    that finishes first puts the buffer back (``clean``). A race is an int32 vector: the bucket it empties next, the
+    cells listed, taken, the buckets emptied, its lead (the cells it may take per cell the mend has looked at or
+    raised), the focus (padded coordinates; row -1: none), the steps of its log it has reached. Unfocused, it logs in
+    row 1 of its links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to
+    empty when it had first taken ``logged_cells(k)`` cells (-1: not yet), so that a mend knows how many cells lie
+    nearer the source than its edits (``kept``), to a fifth. A mend's race is ``logged`` (its ``links`` have a third
+    row: ``_search_rules``), so that ``clean`` finds the cells it lowered."""
     blocked = cell.blocked
     searching = _search_rules(cell, logged)
     empty, priority, link, unlink, clear, log = (searching.empty, searching.priority, searching.link, searching.unlink,
@@ -1420,7 +1426,7 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
         if ti.static(not logged):
             clear(links, heads)
         race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0])
-        for k in range(_POWERS):
+        for k in range(_LOG_STEPS):
             links[1, heads + k] = _UNLISTED
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if ti.static(logged):
@@ -1445,22 +1451,23 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     @ti.func
     def run(values: ti.template(), pen: ti.template(), links: ti.template(), race, most, cap):
         """Go on with ``race`` until it has taken ``most`` cells or finished; returns it."""
-        race = log_powers(values, links, race)
+        race = log_steps(values, links, race)
         while race[_TAKEN] < most and not over(values, race):
             change = empty(values, pen, links, race[_BUCKET], race[_FOCUS_ROW], race[_FOCUS_COL], cap)
             race[_LISTED] += change[0]
             race[_TAKEN] += change[1]
             race[_BUCKET] += 1
             race[_EMPTIED] += 1
-            race = log_powers(values, links, race)
+            race = log_steps(values, links, race)
         return race
 
     @ti.func
-    def log_powers(values: ti.template(), links: ti.template(), race):
-        """Unfocused, log the bucket ``race`` empties next for each power of 2 its cells taken have reached since
-        it last logged; returns it."""
+    def log_steps(values: ti.template(), links: ti.template(), race):
+        """Unfocused, log the bucket ``race`` empties next for each step of ``logged_cells`` its cells taken have
+        reached since it last logged; returns it."""
         heads = values.shape[1] * values.shape[2]
-        while race[_FOCUS_ROW] < 0 and race[_LOGGED] < _POWERS and race[_TAKEN] >= 1 << race[_LOGGED]:
+        while (race[_FOCUS_ROW] < 0 and race[_LOGGED] < _LOG_STEPS
+               and race[_TAKEN] >= _logged_cells(race[_LOGGED])):
             links[1, heads + race[_LOGGED]] = race[_BUCKET]
             race[_LOGGED] += 1
         return race
@@ -1489,12 +1496,12 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
 
     @ti.func
     def kept(links: ti.template(), heads, nearest):
-        """The most cells, a power of 2, that the last unfocused search's log (``links``, its heads at ``heads``)
-        says lay below ``nearest`` (0: none it can tell)."""
+        """The most cells that the last unfocused search's log (``links``, its heads at ``heads``) says lay below
+        ``nearest`` (0: none it can tell)."""
         most = 0
-        for k in range(_POWERS):
+        for k in range(_LOG_STEPS):
             if links[1, heads + k] >= 0 and links[1, heads + k] <= nearest:
-                most = 1 << k
+                most = _logged_cells(k)
         return most
 
     return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, clean=clean, kept=kept)
@@ -1894,7 +1901,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 spent > budget or _doomed(reached, restart, fills) or racing.over(spare, race), 1, 0)
             if run[_MENDED.gave_up]:  # the race runs to its end: the restart, its log the search's from now on
                 race = racing.run(spare, pen, race_links, race, _NEVER, cap)
-                for k in range(_POWERS):
+                for k in range(_LOG_STEPS):
                     links[1, heads + k] = race_links[1, heads + k]
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
                 run[_MENDED.buckets], run[_MENDED.frontier] = race[_EMPTIED], race[_LISTED]

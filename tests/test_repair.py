@@ -752,11 +752,21 @@ def test_a_race_leads_unless_the_cells_kept_outnumber_what_it_could_take_before_
     assert kept < lead * max(budget, looked) or given_lead == 0
 
 
+def test_a_search_logs_four_steps_to_each_doubling_of_its_cells():
+    """``logged_cells``: never fewer for a later step, exactly 2**n at each fourth step, and at most 1.25 times the
+    step before once past the first few."""
+    cells = [engine_module.logged_cells(k) for k in range(engine_module._LOG_STEPS)]
+    assert all(a <= b for a, b in zip(cells, cells[1:])) and cells[-1] < 2 ** 31
+    assert all(cells[4 * n] == 2 ** n for n in range(engine_module._LOG_STEPS // 4))
+    assert all(b <= 1.25 * a + 1 for a, b in zip(cells, cells[1:]))
+
+
 @pytest.mark.parametrize("neighbourhood, weighted", [(16, False), (8, True), (4, False)])
-def test_a_search_logs_how_far_it_had_reached_at_each_power_of_two_cells(neighbourhood, weighted):
-    """An unfocused search logs the bucket it was about to empty when it had first taken 2**k cells: 2**k cells lie
-    below it in the field it leaves (counted by numpy) and fewer below the bucket before. So does a mend's race that
-    won (a goal sealed in), its log the search's from then on; a focused search logs nothing."""
+def test_a_search_logs_how_far_it_had_reached_at_each_step_of_cells_taken(neighbourhood, weighted):
+    """An unfocused search logs the bucket it was about to empty when it had first taken ``logged_cells(k)`` cells
+    (four steps to a doubling, the last within the cells it reached): that many cells lie below it in the field it
+    leaves (counted by numpy) and fewer below the bucket before. So does a mend's race that won (a goal sealed in),
+    its log the search's from then on; a focused search logs nothing."""
     rng = np.random.default_rng(13)
     occupied = rng.random((70, 90)) < 0.25
     goal = (35, 45)
@@ -766,17 +776,18 @@ def test_a_search_logs_how_far_it_had_reached_at_each_power_of_two_cells(neighbo
 
     def log() -> np.ndarray:
         layers = engine._goal
-        return layers.links.to_numpy()[1, layers.padded_cells:layers.padded_cells + engine_module._POWERS]
+        return layers.links.to_numpy()[1, layers.padded_cells:layers.padded_cells + engine_module._LOG_STEPS]
 
     for edit in (None, ring_round(occupied, goal, 6)):
         if edit is not None:
             engine.set_cells(edit, np.ones(len(edit), bool))
         engine.converge()
         values = engine.goal_distances()[np.isfinite(engine.goal_distances())]
-        logged = [(k, bucket) for k, bucket in enumerate(log()) if bucket >= 0]
-        assert len(logged) == int(np.log2(len(values))) + 1
-        for k, bucket in logged:
-            assert np.count_nonzero(values < bucket) >= 2 ** k > np.count_nonzero(values < bucket - 1)
+        logged = [(engine_module.logged_cells(k), bucket) for k, bucket in enumerate(log()) if bucket >= 0]
+        assert len(logged) == sum(engine_module.logged_cells(k) <= len(values)
+                                  for k in range(engine_module._LOG_STEPS))
+        for cells, bucket in logged:
+            assert np.count_nonzero(values < bucket) >= cells > np.count_nonzero(values < bucket - 1)
     engine.set_goal((2, 2))
     engine.converge(focus=(60, 80))
     assert (log() == -1).all()
