@@ -136,9 +136,9 @@ RAISE_COST = 2
 EDIT_COST = 4
 #: A search from the source races a mend's first look and, where the look found the edits' sides apart (the goal may
 #: be sealed in a part of any size, or a pocket sealed off), its raise (``_race_rules``), in a spare buffer: RACE_LEAD
-#: cells taken for each cell the mend has looked at or raised (each about as dear as a search's), less a reset's fills
-#: (the restart refills a buffer). If it finishes first, it is the repair, a restart that cost its own cells and the
-#: mend's beside them, at most 1 + 1 / RACE_LEAD of them. It runs only where it could win (``race_lead``).
+#: cells taken for each cell the mend has looked at or raised (each about as dear as a search's). If it finishes
+#: first, it is the repair, a restart that cost its own cells and the mend's beside them, at most 1 + 1 / RACE_LEAD
+#: of them. It runs only where it could win (``race_lead``).
 RACE_LEAD = 2
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
@@ -1397,7 +1397,7 @@ def logged_cells(step: int) -> int:
 
 
 _doomed, _race_lead, _logged_cells = ti.func(restart_is_cheaper), ti.func(race_lead), ti.func(logged_cells)
-_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED, _OWED = range(9)  # a race's ints
+_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED = range(8)  # a race's ints
 _LOG_STEPS = 120  # the steps of a search's log, up to 1.75 x 2**29 cells (``logged_cells``)
 
 
@@ -1407,8 +1407,7 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     finishes first, it is the repair - a restart that cost its own cells and the mend's beside them -, and a mend
     that finishes first puts the buffer back (``clean``). A race is an int32 vector: the bucket it empties next, the
     cells listed, taken, the buckets emptied, its lead (the cells it may take per cell the mend has looked at or
-    raised), the focus (padded coordinates; row -1: none), the steps of its log it has reached, the cells it owes
-    before it may take any (``pace``). Unfocused, it logs in
+    raised), the focus (padded coordinates; row -1: none), the steps of its log it has reached. Unfocused, it logs in
     row 1 of its links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to
     empty when it had first taken ``logged_cells(k)`` cells (-1: not yet), so that a mend knows how many cells lie
     nearer the source than its edits (``kept``), to a fifth. A mend's race is ``logged`` (its ``links`` have a third
@@ -1427,7 +1426,7 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         if ti.static(not logged):
             clear(links, heads)
-        race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0, 0])
+        race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0])
         for k in range(_LOG_STEPS):
             links[1, heads + k] = _UNLISTED
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
@@ -1482,9 +1481,8 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
 
     @ti.func
     def pace(values: ti.template(), pen: ti.template(), links: ti.template(), race, work, cap):
-        """Go on with ``race`` up to its lead times the mend's ``work`` (cells looked at or raised), less what it
-        owes: a reset's fills, which the restart it may become pays too (the buffer it replaces is filled)."""
-        return run(values, pen, links, race, race[_LEAD] * work - race[_OWED], cap)
+        """Go on with ``race`` up to its lead times the mend's ``work`` (cells looked at or raised)."""
+        return run(values, pen, links, race, race[_LEAD] * work, cap)
 
     @ti.func
     def clean(values: ti.template(), links: ti.template(), cap):
@@ -1886,7 +1884,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             # cells below this value (less a move) did not route through the edits: the source keeps them
             kept = racing.kept(links, heads, ti.i32(ti.min(nearest, 1e9)) - run[_MEND.longest_move])
             race = racing.start(spare, pen, header, race_links, run[_MEND.focus_row], run[_MEND.focus_col])
-            race[_LEAD], race[_OWED] = _race_lead(kept + fills, 0, budget, run[_MEND.lead]), fills
+            race[_LEAD] = _race_lead(kept + fills, 0, budget, run[_MEND.lead])
             looked, race = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], race, spare,
                                    race_links)
             reached, spent, raised = looked[0], looked[1], 0
