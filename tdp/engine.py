@@ -1409,8 +1409,9 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     cells listed, taken, the buckets emptied, its lead (the cells it may take per cell the mend has looked at or
     raised), the focus (padded coordinates; row -1: none), the steps of its log it has reached. Unfocused, it logs in
     row 1 of its links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to
-    empty when it had first taken ``logged_cells(k)`` cells (-1: not yet), so that a mend knows how many cells lie
-    nearer the source than its edits (``kept``), to a fifth. A mend's race is ``logged`` (its ``links`` have a third
+    empty when it had first taken ``logged_cells(k)`` cells (in the search's log -1 for steps not reached; a mend's
+    race that wins hands its log on: ``hand_log``), so that a mend knows how many cells lie nearer the source than its
+    edits (``kept``), to a fifth. A mend's race is ``logged`` (its ``links`` have a third
     row: ``_search_rules``), so that ``clean`` finds the cells it lowered."""
     blocked = cell.blocked
     searching = _search_rules(cell, logged)
@@ -1421,14 +1422,15 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     def start(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), focus_row,
               focus_col):
         """A race from the source (none if blocked: it reaches nothing), ``values`` at the initial state, no lead.
-        A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``); the search's are
-        cleared (a mend's raise keeps cells waiting at the far end of their row 0)."""
+        A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``), and its log is
+        read only as far as it logs (``hand_log``); the search's buckets are cleared (a mend's raise keeps cells
+        waiting at the far end of their row 0) and its log too (a mend reads it whole: ``kept``)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         if ti.static(not logged):
             clear(links, heads)
+            for k in range(_LOG_STEPS):
+                links[1, heads + k] = _UNLISTED
         race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0])
-        for k in range(_LOG_STEPS):
-            links[1, heads + k] = _UNLISTED
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if ti.static(logged):
             links[2, heads] = 0
@@ -1496,6 +1498,13 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
                 unlink(links, heads, c)
 
     @ti.func
+    def hand_log(links: ti.template(), race, into: ti.template(), heads):
+        """Hand the log of ``race`` (in ``links``, its heads at ``heads``) on to ``into`` (the search's links), the
+        steps it did not reach as none (-1)."""
+        for k in range(_LOG_STEPS):
+            into[1, heads + k] = ti.select(k < race[_LOGGED], links[1, heads + k], _UNLISTED)
+
+    @ti.func
     def kept(links: ti.template(), heads, nearest):
         """The most cells that the last unfocused search's log (``links``, its heads at ``heads``) says lay below
         ``nearest`` (0: none it can tell)."""
@@ -1505,7 +1514,8 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
                 most = _logged_cells(k)
         return most
 
-    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, clean=clean, kept=kept)
+    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, clean=clean, hand_log=hand_log,
+                           kept=kept)
 
 
 def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
@@ -1902,8 +1912,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 spent > budget or _doomed(reached, restart, fills) or racing.over(spare, race), 1, 0)
             if run[_MENDED.gave_up]:  # the race runs to its end: the restart, its log the search's from now on
                 race = racing.run(spare, pen, race_links, race, _NEVER, cap)
-                for k in range(_LOG_STEPS):
-                    links[1, heads + k] = race_links[1, heads + k]
+                racing.hand_log(race_links, race, links, heads)
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
                 run[_MENDED.buckets], run[_MENDED.frontier] = race[_EMPTIED], race[_LISTED]
                 run[_MENDED.lowered] = race[_TAKEN]

@@ -766,7 +766,8 @@ def test_a_search_logs_how_far_it_had_reached_at_each_step_of_cells_taken(neighb
     """An unfocused search logs the bucket it was about to empty when it had first taken ``logged_cells(k)`` cells
     (four steps to a doubling, the last within the cells it reached): that many cells lie below it in the field it
     leaves (counted by numpy) and fewer below the bucket before. So does a mend's race that won (a goal sealed in),
-    its log the search's from then on; a focused search logs nothing."""
+    its log the search's from then on - a smaller pocket's after a larger one's, none of the larger's steps left
+    over; a focused search logs nothing."""
     rng = np.random.default_rng(13)
     occupied = rng.random((70, 90)) < 0.25
     goal = (35, 45)
@@ -778,10 +779,15 @@ def test_a_search_logs_how_far_it_had_reached_at_each_step_of_cells_taken(neighb
         layers = engine._goal
         return layers.links.to_numpy()[1, layers.padded_cells:layers.padded_cells + engine_module._LOG_STEPS]
 
-    for edit in (None, ring_round(occupied, goal, 6)):
+    last = None
+    for edit in (None, ring_round(occupied, goal, 6), ring_round(occupied, goal, 3)):  # the second race logs less
+        if last is not None:
+            engine.set_cells(last, np.zeros(len(last), bool))
+            engine.converge()
         if edit is not None:
             engine.set_cells(edit, np.ones(len(edit), bool))
         engine.converge()
+        last = edit
         values = engine.goal_distances()[np.isfinite(engine.goal_distances())]
         logged = [(engine_module.logged_cells(k), bucket) for k, bucket in enumerate(log()) if bucket >= 0]
         assert len(logged) == sum(engine_module.logged_cells(k) <= len(values)
