@@ -60,7 +60,8 @@ LANES = 32
 PAD = stencil.REACH
 #: Active tiles of one kind of layer up to which iterations run one after another on the calling thread, in one
 #: launch; beyond, each iteration is a parallel launch. Measured on the 2-core VM: waking the worker threads costs
-#: about 55 µs a launch, and one thread relaxes a dense layer of up to about 1000 tiles as fast as two.
+#: about 55 µs a launch, and one thread relaxes a dense layer of up to about 1000 tiles as fast as two (a parallel
+#: loop of fewer than 1,024 iterations runs on one thread in Taichi 1.7: :func:`init_taichi`).
 SERIAL_TILES = 512
 #: The same for converge()'s rounds on a scalar layer (the goal's): its tiles are light, and a parallel round was no
 #: faster than one thread on the 2-core VM (random 1024², 20 % obstacles, from scratch: 155-189 ms on one thread
@@ -337,8 +338,11 @@ def init_taichi() -> None:
     """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2).
 
     Packed layers stay LLVM vectors (``real_matrix_scalarize=False``: Taichi's CPU optimiser otherwise targets
-    generic x86-64, 4 floats wide); parallel loops hand out 32 iterations at a time (the adaptive block size gives
-    at least 512, so a small map's tiles all went to one thread)."""
+    generic x86-64, 4 floats wide). Taichi 1.7 splits a parallel loop on the CPU into one block per thread of at
+    least 512 iterations (its ``make_cpu_multithreaded_range_for`` pass; ``block_dim`` and
+    ``cpu_block_dim_adaptive`` change nothing there), so a loop of fewer than 1,024 iterations runs on one thread:
+    SERIAL_TILES keeps the smaller waves off the worker threads. Turning the pass off (``block_dim`` honoured, 32
+    iterations a task) made a dense iteration of 64 node layers on a 512² map 1.2-1.6x slower (2-core VM)."""
     global _initialised, _on_cpu
     if _initialised:
         return
@@ -351,7 +355,7 @@ def init_taichi() -> None:
         raise ValueError(f"TDP_THREADS must be a positive integer, got {threads!r}")
     with contextlib.redirect_stdout(io.StringIO()) as said:  # ti.init prints "Starting on arch=..."
         ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
-                real_matrix_scalarize=False, cpu_block_dim_adaptive=False)
+                real_matrix_scalarize=False)
     logging.getLogger(__name__).debug(said.getvalue().strip())
     _initialised = True
     _on_cpu = arch == ti.cpu
