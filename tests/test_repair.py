@@ -706,9 +706,10 @@ def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_it
         monkeypatch, neighbourhood, corner_cutting):
     """With no first look to count it (its sides apart), a goal sealed in a pocket is found by the race: its search
     from the source takes every cell a BFS of the stencil reaches while the raise runs, the raise stops as soon as it
-    has (one cell before, its lead called for fewer), and the mend gives up with the race as its restart. The same
-    ring round a far cell: the last search's log says the source keeps most of the map, more than the race could
-    take before the mend's budget runs out - no race, and the mend finishes."""
+    has (one cell before, its head start - the cells nearer the source than the ring, fewer than it reaches - and its
+    lead called for fewer), and the mend gives up with the race as its restart. The same ring round a far cell: the
+    last search's log says the source keeps most of the map, more than the race could take before the mend's budget
+    runs out - no race, and the mend finishes."""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
     lead = engine_module.RACE_LEAD
     rng = np.random.default_rng(11)
@@ -728,9 +729,9 @@ def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_it
         if by == "search":
             reached = reachable_by_the_stencil(engine.occupied, goal, corner_cutting, neighbourhood)
             assert outcome.gave_up and outcome.raced == outcome.lowered == reached
-            assert lead * (outcome.raised - 1) < reached
+            assert 0 < outcome.head < reached and outcome.head + lead * (outcome.raised - 1) < reached
         else:
-            assert not outcome.gave_up and outcome.raced == 0
+            assert not outcome.gave_up and outcome.raced == outcome.head == 0
         assert_equal_to_a_fresh_converge(engine, options)
         assert_no_marks_left(engine)
         engine.set_cells(ring, np.zeros(len(ring), bool))
@@ -750,6 +751,15 @@ def test_a_race_leads_unless_the_least_restart_outnumbers_what_it_could_take_bef
     assert engine_module.race_lead(least, looked, budget + more, lead) >= given_lead
     assert engine_module.race_lead(least, looked + more, budget, lead) >= given_lead or looked + more > budget
     assert least < lead * max(budget, looked) or given_lead == 0
+
+
+@given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6))
+def test_a_race_gets_its_head_start_only_where_a_race_that_loses_risks_no_more_than_its_share(kept, most, more):
+    """``race_head``: all the cells nearer the source than the edits, or none where they are more than ``most``;
+    never less for a larger share."""
+    head = engine_module.race_head(kept, most)
+    assert head == (kept if kept <= most else 0)
+    assert engine_module.race_head(kept, most + more) >= head
 
 
 def test_a_search_logs_four_steps_to_each_doubling_of_its_cells():
