@@ -145,9 +145,10 @@ RACE_LEAD = 2
 #: than the edits (``kept``: the log's count, a lower bound on what the source still reaches), which a race that wins
 #: must take first, and then keeps its lead - a goal sealed in a room is mended at 1 + (1 - kept / reached) /
 #: RACE_LEAD of a restart, not 1 + 1 / RACE_LEAD. A race that then loses has taken them in vain, so the head start is
-#: given only where they are at most RACE_HEAD_SHARE of a restart (``race_head``): A/B on the 2-core VM, rooms on 13
-#: maps 10-16 % and doors closing on a maze up to 27 % cheaper, while a pocket sealed on nav2's warehouse whose edits
-#: lay nearer the source than a fifth of its cells cost 4.9x more with a share of 1/4.
+#: given only where they are at most RACE_HEAD_SHARE of a restart (``race_head``): A/B on the 2-core VM, rooms 7-19 %
+#: cheaper on 8 of 15 maps (the rest within the VM's spread) and a door keeping a tenth of a maze 19 %, nothing else
+#: moved, while with a share of 1/4 a pocket sealed on nav2's warehouse, its ring nearer the source than a fifth of
+#: the cells, cost 4.9x more.
 RACE_HEAD_SHARE = 1 / 8
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
