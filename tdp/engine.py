@@ -1582,7 +1582,8 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
 
         It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
         search takes: the share of a restart's price the mend may spend), or the ``race`` (in ``spare``:
-        ``_race_rules``), its lead times the cells looked at (``spent``) and raised ahead of them, has finished.
+        ``_race_rules``), its head start and its lead times the cells looked at (``spent``) and raised ahead of
+        them, has finished.
         Returns the cells raised and the race."""
         top, raised = 0, 0
         last, waiting, rose = links.shape[1] - 1, 0, 0  # the cells waiting end at links[0, last], going down
@@ -2333,8 +2334,9 @@ class _LayerArrays:
         if self.kernels.weighted:
             dearest = float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0))
             self.longest_move = max(self.longest_move, _longest_move(dearest))
-            if _search_buckets(dearest) > self.ring:
-                self.ring, self.links, self.race_links = _search_buckets(dearest), None, None
+            ring = _search_buckets(dearest)
+            if ring > self.ring:
+                self.ring, self.links, self.race_links = ring, None, None
         if not self.lanes:
             self.unpainted.append((cells, penalties))
         else:
