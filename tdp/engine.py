@@ -700,13 +700,6 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
             found = -1
         return found
 
-    move_rows, move_cols = [m.dr for m in moves], [m.dc for m in moves]
-
-    @ti.func
-    def offset(k):
-        """The (row, col) offset of move ``k`` (``moves``' order), ``k`` known at run time only."""
-        return ti.Vector(move_rows, ti.i32)[k], ti.Vector(move_cols, ti.i32)[k]
-
     @ti.func
     def window_cell(origins: ti.template(), cells: ti.template(), k, g, lane):
         """Cell k of ``cells`` (grid coordinates) in the layer coordinates of lane ``lane`` of group g."""
@@ -717,19 +710,13 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
     # to the other (ARCHITECTURE §4), so they join the same cells as the whole stencil (a mend's floods step by them)
     steps = tuple(m for m in moves if not m.crossed)
     return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, updated=updated,
-                           leaning=leaning, successor_move=successor_move, offset=offset, window_cell=window_cell,
-                           moves=moves, steps=steps)
+                           leaning=leaning, successor_move=successor_move, window_cell=window_cell, moves=moves,
+                           steps=steps)
 
 
 def _given(argument) -> bool:
     """Whether a ti.func's optional template argument was given (Taichi scope has no ``is``)."""
     return argument is not None
-
-
-@ti.func
-def _lowest_bit(bits):
-    """The index of the lowest set bit of the int32 ``bits`` (not 0)."""
-    return 31 - ti.math.clz(bits & -bits)
 
 
 @ti.func
@@ -1196,7 +1183,6 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     ``_bucket_rules``. ``logged``: its ``links`` have a third row, which logs each cell it lowers from the cap
     (``_race_rules``: a race that loses puts them back)."""
     crossing, moves, move_cost, penalty = cell.crossing, cell.moves, cell.move_cost, cell.penalty
-    offset, no_candidates = cell.offset, [0.0] * len(cell.moves)
     buckets = _bucket_rules()
     unlink, link, clear = buckets.unlink, buckets.link, buckets.clear
 
@@ -1219,9 +1205,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     def empty(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col, cap):
         """Take every cell of ``bucket`` and lower its neighbours through it, listing each lowered one in the bucket
         of its priority (logged, the first time it falls below ``cap``); returns (the change in the cells listed,
-        the cells taken). The candidates are compared first, a bit per move that lowers its cell, and the lowered
-        cells listed one set bit after another: a branch per cell lowered, where a test per move mispredicted
-        (searches 0.74-0.99x, lowerings 0.70-0.96x, A/B in alternating processes)."""
+        the cells taken)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         mask = links.shape[1] - heads - 1
         slot, listed, taken = bucket & mask, 0, 0
@@ -1231,28 +1215,23 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
             listed -= 1
             taken += 1
             i, j = c // width, c % width
-            value, lowers, cands = values[0, i, j], 0, ti.Vector(no_candidates, ti.f32)
-            for k, m in ti.static(tuple(enumerate(moves))):  # the cell that move m takes from (i, j), penalties
-                u, v = i - m.dr, j - m.dc  # added (0 or inf): no branch, where a test per blocked cell mispredicts
-                cands[k] = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
-                cands[k] += penalty(pen, 0, u, v, 0)
-                lowers |= ti.select(cands[k] < values[0, u, v], 1 << k, 0)
-            while lowers != 0:
-                k = _lowest_bit(lowers)
-                lowers &= lowers - 1
-                dr, dc = offset(k)
-                u, v, cand = i - dr, j - dc, cands[k]
-                there = u * width + v
-                if ti.static(logged):
-                    if values[0, u, v] >= cap:
-                        log(links, heads, there)
-                values[0, u, v] = cand
-                if links[1, there] == _UNLISTED:
-                    listed += 1
-                else:
-                    unlink(links, heads, there)
-                due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
-                link(links, heads, there, due & mask)
+            value = values[0, i, j]
+            for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
+                u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
+                cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
+                cand += penalty(pen, 0, u, v, 0)
+                if cand < values[0, u, v]:
+                    there = u * width + v
+                    if ti.static(logged):
+                        if values[0, u, v] >= cap:
+                            log(links, heads, there)
+                    values[0, u, v] = cand
+                    if links[1, there] == _UNLISTED:
+                        listed += 1
+                    else:
+                        unlink(links, heads, there)
+                    due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
+                    link(links, heads, there, due & mask)
         return ti.Vector([listed, taken])
 
     @ti.func
@@ -1570,7 +1549,7 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
     them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
     the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
-    blocked, updated, leaning, offset = cell.blocked, cell.updated, cell.leaning, cell.offset
+    moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
     pace, over = racing.pace, racing.over
 
     @ti.func
@@ -1631,12 +1610,10 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
                 trail[0, raised] = c
                 raised += 1
                 rose += 1
-                while leans != 0:  # the neighbours whose value came through this cell's (their route; a move whose
-                    dr, dc = offset(_lowest_bit(leans))  # crossing is now blocked starts within reach of an edit),
-                    leans &= leans - 1  # one set bit after another: a branch per dependant, not per move
-                    tail = push(values, links, cap, tail, i + dr, j + dc)
-                if race[_LEAD] > 0:  # a race keeps pace (none: the call alone cost box repairs 3-4 %)
-                    race = pace(spare, pen, race_links, race, spent + raised, cap)
+                for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
+                    if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
+                        tail = push(values, links, cap, tail, i + m.dr, j + m.dc)  # reach of an edit)
+                race = pace(spare, pen, race_links, race, spent + raised, cap)
             elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
                 links[1, c] = _DEFERRED
                 trail[1, waiting] = c
