@@ -1,0 +1,168 @@
+"""Two versions of the engine side by side in one process, for an engine change's A/B.
+
+    python -m benchmarks.ab [BEFORE [AFTER]] [--rounds N] [--quick]
+
+BEFORE and AFTER are git revisions of this repository (BEFORE: HEAD when left out; AFTER: the working tree, so that
+a plain run times an uncommitted change against the last commit). A revision's ``tdp`` is exported (``git
+archive``), and each version is loaded as a package of its own, so that both run in one process on one Taichi runtime.
+Each round times both, in alternating order (one first, then the other): a from-scratch converge (``reset()``, then
+``converge()``), and ``converge()`` after a 3 x 3 box and after a wall of 16 cells on the route
+(``benchmarks.convergence.repair_edit``), and after each edit's undo (a lowering alone), on random, dense, maze and
+ROS maps. Per case: the median over the rounds of each version's median, and the ratio AFTER / BEFORE; per kind the
+geometric mean. Both versions' fields are checked equal before the timing starts.
+
+Why one process: this VM's speed drifts between processes by 10-20 % for the same code. In the twenty-first session
+an A/B in alternating processes credited a change with searches 0.74-0.99x that took 0.85-1.15x in one process;
+here a version against itself gives geometric means of 0.96-1.04 per kind, single cases 0.83-1.16 (so a change is
+worth what its geometric means say, and a single case only beyond that spread).
+"""
+from __future__ import annotations
+
+import importlib.util
+import io
+import math
+import statistics
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from benchmarks import convergence
+from benchmarks.common import print_table, quick_parser, save_results
+
+ROOT = Path(__file__).resolve().parents[1]
+KINDS = ("scratch", "box", "box undone", "wall", "wall undone")
+MAPS = ["random 256² corner", "random 256² random", "random 512² random", "random 1024² corner",
+        "random 512² 40 % centre", "maze 512² 1-cell corner", "maze 512² 2-cell random", "turtlebot3_world #0",
+        "nav2 depot #0"]
+QUICK_MAPS = ["random 64² corner", "random 128² random", "maze 64² 1-cell corner"]
+ROUNDS, QUICK_ROUNDS = 6, 1
+REPEATS = 7  # timed calls of each kind a round (the first a warm-up)
+
+
+def exported(revision: str, into: Path) -> Path:
+    """The ``tdp`` package of ``revision``, written under ``into``; a ValueError if git cannot export it."""
+    done = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", revision, "tdp"], capture_output=True)
+    if done.returncode != 0:
+        raise ValueError(f"cannot export revision {revision!r}: {done.stderr.decode().strip()}")
+    with tarfile.open(fileobj=io.BytesIO(done.stdout)) as archive:
+        archive.extractall(into, filter="data")
+    return into
+
+
+def loaded(name: str, root: Path):
+    """``root``/tdp imported as the package ``name``, its Taichi left to the one this process initialised (a
+    second ``ti.init`` would reset the runtime every loaded version shares)."""
+    spec = importlib.util.spec_from_file_location(name, root / "tdp" / "__init__.py",
+                                                  submodule_search_locations=[str(root / "tdp")])
+    package = importlib.util.module_from_spec(spec)
+    sys.modules[name] = package
+    spec.loader.exec_module(package)
+    package.engine._initialised = True
+    return package
+
+
+def cases(names: list[str]) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """The maps and goals of ``benchmarks.convergence`` that ``names`` names, in its order."""
+    every = (convergence.random_cases(64) + convergence.random_cases(128) + convergence.random_cases(256)
+             + convergence.random_cases(512) + convergence.random_cases(1024) + convergence.random_cases(512, 0.4)
+             + convergence.maze_cases(64, 1) + convergence.maze_cases(512, 1) + convergence.maze_cases(512, 2)
+             + convergence.ros_cases())
+    return [case for case in every if case[0] in names]
+
+
+def round_times(field, edits: dict) -> dict[str, float]:
+    """One round of one version: the median seconds of each kind (``KINDS``) on ``field``, converged."""
+    times = {kind: [] for kind in KINDS}
+    for _ in range(REPEATS):
+        field.reset()
+        began = time.perf_counter()
+        field.converge()
+        times["scratch"].append(time.perf_counter() - began)
+        for kind, (apply, undo) in edits.items():
+            for step, name in ((apply, kind), (undo, f"{kind} undone")):
+                step()
+                began = time.perf_counter()
+                field.converge()
+                times[name].append(time.perf_counter() - began)
+    return {kind: statistics.median(values[1:]) for kind, values in times.items()}
+
+
+def compare(versions: dict, name: str, occupied: np.ndarray, goal, rounds: int) -> list[dict]:
+    """Both versions on one map: their rows (one per kind: each version's median ms and after / before)."""
+    fields = {label: package.DistanceField(package.GridMap(occupied), goal) for label, package in versions.items()}
+    for field in fields.values():
+        field.converge()
+    before, after = (field.distances() for field in fields.values())
+    if not np.array_equal(before, after):
+        raise AssertionError(f"{name}: the two versions' fields differ")
+    edits = {label: {kind: convergence.repair_edit(field, kind, before) for kind in ("box", "wall")}
+             for label, field in fields.items()}
+    medians = {label: {kind: [] for kind in KINDS} for label in fields}
+    for turn in range(rounds):
+        for label in (list(fields) if turn % 2 == 0 else list(fields)[::-1]):
+            for kind, seconds in round_times(fields[label], edits[label]).items():
+                medians[label][kind].append(seconds)
+    rows = []
+    for kind in KINDS:
+        first, second = (statistics.median(medians[label][kind]) * 1e3 for label in fields)
+        rows.append({"map": name, "kind": kind, "before_ms": first, "after_ms": second, "ratio": second / first})
+    return rows
+
+
+def figure(rows: list[dict], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 0.22 * len(rows) + 1.5))
+    labels = [f"{row['map']}: {row['kind']}" for row in rows]
+    ratios = [row["ratio"] for row in rows]
+    ax.barh(range(len(rows)), ratios, color=["C2" if ratio < 1 else "C3" for ratio in ratios])
+    ax.axvline(1.0, color="k", lw=0.8)
+    ax.set_xlim(min(0.5, min(ratios) - 0.05), max(1.5, max(ratios) + 0.05))
+    ax.set_yticks(range(len(rows)), labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xlabel("after / before (time, one process)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main() -> None:
+    parser = quick_parser(__doc__)
+    parser.add_argument("before", nargs="?", default="HEAD", help="a git revision of this repository (default HEAD)")
+    parser.add_argument("after", nargs="?", help="another revision (default: the working tree)")
+    parser.add_argument("--rounds", type=int, default=None, help=f"rounds of both versions (default {ROUNDS})")
+    args = parser.parse_args()
+    rounds = args.rounds or (QUICK_ROUNDS if args.quick else ROUNDS)
+    import tdp.engine
+
+    tdp.engine.init_taichi()
+    with tempfile.TemporaryDirectory() as scratch:
+        before = loaded("tdp_before", exported(args.before, Path(scratch) / "before"))
+        after = loaded("tdp_after", ROOT if args.after is None else exported(args.after, Path(scratch) / "after"))
+        versions = {"before": before, "after": after}
+        rows = []
+        for name, occupied, goal in cases(QUICK_MAPS if args.quick else MAPS):
+            rows += compare(versions, name, occupied, goal, rounds)
+            print(f"  {name}: " + ", ".join(f"{row['kind']} {row['ratio']:.2f}x" for row in rows[-len(KINDS):]),
+                  flush=True)
+    means = {kind: math.exp(statistics.fmean(math.log(row["ratio"]) for row in rows if row["kind"] == kind))
+             for kind in KINDS}
+    print_table(["map", "kind", "before ms", "after ms", "after / before"],
+                [[row["map"], row["kind"], f"{row['before_ms']:.3f}", f"{row['after_ms']:.3f}", f"{row['ratio']:.2f}"]
+                 for row in rows])
+    print_table(["kind", "geometric mean after / before"], [[kind, f"{mean:.3f}"] for kind, mean in means.items()])
+    save_results("ab-quick" if args.quick else "ab",
+                 {"before": args.before, "after": args.after or "working tree", "rounds": rounds, "rows": rows,
+                  "geometric_means": means}, lambda path: figure(rows, path))
+
+
+if __name__ == "__main__":
+    main()
