@@ -1,15 +1,16 @@
 """Two versions of the engine side by side in one process, for an engine change's A/B.
 
-    python -m benchmarks.ab [BEFORE [AFTER]] [--rounds N] [--quick]
+    python -m benchmarks.ab [BEFORE [AFTER]] [--pairs N] [--quick]
 
 BEFORE and AFTER are git revisions of this repository (BEFORE: HEAD when left out; AFTER: the working tree, so that
 a plain run times an uncommitted change against the last commit). A revision's ``tdp`` is exported (``git
 archive``), and each version is loaded as a package of its own, so that both run in one process on one Taichi runtime.
-Each round times both, in alternating order (one first, then the other): a from-scratch converge (``reset()``, then
-``converge()``), and ``converge()`` after a 3 x 3 box and after a wall of 16 cells on the route
-(``benchmarks.convergence.repair_edit``), and after each edit's undo (a lowering alone), on random, dense, maze and
-ROS maps. Per case: the median over the rounds of each version's median, and the ratio AFTER / BEFORE; per kind the
-geometric mean. Both versions' fields are checked equal before the timing starts.
+Each pass times both, one after the other, the first swapped every pass: a from-scratch converge (``reset()``, then
+``converge()``), and ``converge()`` after a 3 x 3 box, a wall of 16 cells on the route and a ring that seals the
+goal in a room (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze and ROS
+maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a pass of both takes
+milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the geometric mean. Both
+versions' fields are checked equal before the timing starts.
 
 Why one process: this VM's speed drifts between processes by 10-20 % for the same code. In the twenty-first session
 an A/B in alternating processes credited a change with searches 0.74-0.99x that took 0.85-1.15x in one process;
@@ -35,13 +36,15 @@ from benchmarks import convergence
 from benchmarks.common import print_table, quick_parser, save_results
 
 ROOT = Path(__file__).resolve().parents[1]
-KINDS = ("scratch", "box", "box undone", "wall", "wall undone")
+#: The edits of ``benchmarks.convergence.repair_edit`` timed, each undone too: a box and a wall on the route (a
+#: raise, then a lowering), the goal sealed in a room of a sixteenth of the map (the race), and their undoing.
+EDITS = ("box", "wall", "goal-room")
+KINDS = ("scratch",) + tuple(kind for edit in EDITS for kind in (edit, f"{edit} undone"))
 MAPS = ["random 256² corner", "random 256² random", "random 512² random", "random 1024² corner",
         "random 512² 40 % centre", "maze 512² 1-cell corner", "maze 512² 2-cell random", "turtlebot3_world #0",
         "nav2 depot #0"]
 QUICK_MAPS = ["random 64² corner", "random 128² random", "maze 64² 1-cell corner"]
-ROUNDS, QUICK_ROUNDS = 6, 1
-REPEATS = 7  # timed calls of each kind a round (the first a warm-up)
+PAIRS, QUICK_PAIRS = 30, 3  # passes of both versions a map (after a warm-up pass)
 
 
 def exported(revision: str, into: Path) -> Path:
@@ -75,42 +78,42 @@ def cases(names: list[str]) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
     return [case for case in every if case[0] in names]
 
 
-def round_times(field, edits: dict) -> dict[str, float]:
-    """One round of one version: the median seconds of each kind (``KINDS``) on ``field``, converged."""
-    times = {kind: [] for kind in KINDS}
-    for _ in range(REPEATS):
-        field.reset()
-        began = time.perf_counter()
-        field.converge()
-        times["scratch"].append(time.perf_counter() - began)
-        for kind, (apply, undo) in edits.items():
-            for step, name in ((apply, kind), (undo, f"{kind} undone")):
-                step()
-                began = time.perf_counter()
-                field.converge()
-                times[name].append(time.perf_counter() - began)
-    return {kind: statistics.median(values[1:]) for kind, values in times.items()}
+def one_pass(field, edits: dict) -> dict[str, float]:
+    """Each kind (``KINDS``) timed once on ``field``, converged, in seconds; the field is left converged."""
+    field.reset()
+    began = time.perf_counter()
+    field.converge()
+    seconds = {"scratch": time.perf_counter() - began}
+    for kind, (apply, undo) in edits.items():
+        for step, name in ((apply, kind), (undo, f"{kind} undone")):
+            step()
+            began = time.perf_counter()
+            field.converge()
+            seconds[name] = time.perf_counter() - began
+    return seconds
 
 
-def compare(versions: dict, name: str, occupied: np.ndarray, goal, rounds: int) -> list[dict]:
-    """Both versions on one map: their rows (one per kind: each version's median ms and after / before)."""
+def compare(versions: dict, name: str, occupied: np.ndarray, goal, pairs: int) -> list[dict]:
+    """Both versions on one map, ``pairs`` passes of each in turn (the first of each a warm-up, the order swapped
+    every pass): one row per kind - each version's median ms and the median of the passes' after / before."""
     fields = {label: package.DistanceField(package.GridMap(occupied), goal) for label, package in versions.items()}
     for field in fields.values():
         field.converge()
     before, after = (field.distances() for field in fields.values())
     if not np.array_equal(before, after):
         raise AssertionError(f"{name}: the two versions' fields differ")
-    edits = {label: {kind: convergence.repair_edit(field, kind, before) for kind in ("box", "wall")}
+    edits = {label: {kind: convergence.repair_edit(field, kind, before) for kind in EDITS}
              for label, field in fields.items()}
-    medians = {label: {kind: [] for kind in KINDS} for label in fields}
-    for turn in range(rounds):
-        for label in (list(fields) if turn % 2 == 0 else list(fields)[::-1]):
-            for kind, seconds in round_times(fields[label], edits[label]).items():
-                medians[label][kind].append(seconds)
+    passes = []
+    for turn in range(pairs + 1):
+        order = list(fields) if turn % 2 == 0 else list(fields)[::-1]
+        passes.append({label: one_pass(fields[label], edits[label]) for label in order})
     rows = []
     for kind in KINDS:
-        first, second = (statistics.median(medians[label][kind]) * 1e3 for label in fields)
-        rows.append({"map": name, "kind": kind, "before_ms": first, "after_ms": second, "ratio": second / first})
+        first, second = ([done[label][kind] for done in passes[1:]] for label in fields)
+        rows.append({"map": name, "kind": kind, "before_ms": statistics.median(first) * 1e3,
+                     "after_ms": statistics.median(second) * 1e3,
+                     "ratio": statistics.median(b / a for a, b in zip(first, second))})
     return rows
 
 
@@ -138,9 +141,9 @@ def main() -> None:
     parser = quick_parser(__doc__)
     parser.add_argument("before", nargs="?", default="HEAD", help="a git revision of this repository (default HEAD)")
     parser.add_argument("after", nargs="?", help="another revision (default: the working tree)")
-    parser.add_argument("--rounds", type=int, default=None, help=f"rounds of both versions (default {ROUNDS})")
+    parser.add_argument("--pairs", type=int, default=None, help=f"passes of both versions a map (default {PAIRS})")
     args = parser.parse_args()
-    rounds = args.rounds or (QUICK_ROUNDS if args.quick else ROUNDS)
+    pairs = args.pairs or (QUICK_PAIRS if args.quick else PAIRS)
     import tdp.engine
 
     tdp.engine.init_taichi()
@@ -150,7 +153,7 @@ def main() -> None:
         versions = {"before": before, "after": after}
         rows = []
         for name, occupied, goal in cases(QUICK_MAPS if args.quick else MAPS):
-            rows += compare(versions, name, occupied, goal, rounds)
+            rows += compare(versions, name, occupied, goal, pairs)
             print(f"  {name}: " + ", ".join(f"{row['kind']} {row['ratio']:.2f}x" for row in rows[-len(KINDS):]),
                   flush=True)
     means = {kind: math.exp(statistics.fmean(math.log(row["ratio"]) for row in rows if row["kind"] == kind))
@@ -160,7 +163,7 @@ def main() -> None:
                  for row in rows])
     print_table(["kind", "geometric mean after / before"], [[kind, f"{mean:.3f}"] for kind, mean in means.items()])
     save_results("ab-quick" if args.quick else "ab",
-                 {"before": args.before, "after": args.after or "working tree", "rounds": rounds, "rows": rows,
+                 {"before": args.before, "after": args.after or "working tree", "pairs": pairs, "rows": rows,
                   "geometric_means": means}, lambda path: figure(rows, path))
 
 
