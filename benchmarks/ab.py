@@ -12,10 +12,11 @@ maps. Per case: each version's median and the median of the passes' ratios AFTER
 milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the geometric mean. Both
 versions' fields are checked equal before the timing starts.
 
-Why one process: this VM's speed drifts between processes by 10-20 % for the same code. In the twenty-first session
-an A/B in alternating processes credited a change with searches 0.74-0.99x that took 0.85-1.15x in one process;
-here a version against itself gives geometric means of 0.96-1.04 per kind, single cases 0.83-1.16 (so a change is
-worth what its geometric means say, and a single case only beyond that spread).
+Why one process, pass by pass: this VM's speed drifts between processes by 10-20 % for the same code, and within a
+process over seconds. In the twenty-first session an A/B in alternating processes credited a change with searches
+0.74-0.99x that took 1.04x here, and one round by round (each version's median of seven in turn) blamed another
+for a 5-16 % loss on mazes that is 0.98-1.04x here. A version against itself gives geometric means of 0.999-1.006
+per kind and single cases 0.96-1.07.
 """
 from __future__ import annotations
 
