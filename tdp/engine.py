@@ -1553,6 +1553,11 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
     pace, over = racing.pace, racing.over
 
     @ti.func
+    def after(links: ti.template(), index):
+        """The entry after ``index`` in the raise's ring (row 0 of ``links``)."""
+        return ti.select(index + 1 == links.shape[1], 0, index + 1)
+
+    @ti.func
     def push(values: ti.template(), links: ti.template(), cap, tail, i, j):
         """Queue padded cell (i, j) for the raise (row 0 of ``links``, a ring: ``tail`` is its end) unless it is
         queued or at the cap; returns the new tail."""
@@ -1560,9 +1565,7 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
         if links[1, c] == _UNLISTED and values[0, i, j] < cap:
             links[1, c] = _STACKED
             links[0, tail] = c
-            tail += 1
-            if tail == links.shape[1]:
-                tail = 0
+            tail = after(links, tail)
         return tail
 
     @ti.func
@@ -1578,12 +1581,12 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
         was mostly the cell just pushed (``benchmarks.ab``: boxes 0.95x and walls 0.90x a stack's, geometric means
         over nine maps - random and ROS maps 0.80-0.99x, mazes 0.99-1.04x -, the goal sealed in a room 1.02x). The
         order does not matter for the result: a cell looked at before its last route rose is a dependant of the cell
-        that rises, and is looked at again. Only a raised cell's dependants - neighbours whose value is its old one plus their move to
-        it - are looked at again. A cell that relaxes below its value (a cell freed or made cheaper by the same
-        edits opened a move to it) may do so through a neighbour not raised yet, of which it is no dependant: it
-        waits in row 1 of ``trail`` and is looked at again once the queue has run dry, as long as cells rose since
-        it was last looked at (before, such a cell was kept, and one whose route
-        went through a cell now blocked kept the value that route gave, below every route it has). Every cell left
+        that rises, and is looked at again. Only a raised cell's dependants - neighbours whose value is its old one
+        plus their move to it - are looked at again. A cell that relaxes below its value (a cell freed or made
+        cheaper by the same edits opened a move to it) may do so through a neighbour not raised yet, of which it is
+        no dependant: it waits in row 1 of ``trail`` and is looked at again once the queue has run dry, as long as
+        cells rose since it was last looked at (before, such a cell was kept, and one whose route went through a
+        cell now blocked kept the value that route gave, below every route it has). Every cell left
         below the cap then has a real route (a neighbour at least a move lower, down to the source), or relaxes
         below its value through one that has (the seeds lower it). The raised cells go in row 0 of ``trail``.
 
@@ -1599,9 +1602,7 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
                 tail = push(values, links, cap, tail, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
         while head != tail and spent + raised * RAISE_COST <= budget and not over(spare, race):
             c = links[0, head]
-            head += 1
-            if head == links.shape[1]:
-                head = 0
+            head = after(links, head)
             links[1, c] = _UNLISTED
             i, j = c // values.shape[2], c % values.shape[2]
             value = values[0, i, j]
@@ -1621,16 +1622,15 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
                 waiting += 1
             if head == tail and rose > 0:  # cells rose since the waiting ones were looked at: again
                 for k in range(waiting):
-                    links[1, trail[1, k]] = _UNLISTED
-                    tail = push(values, links, cap, tail, trail[1, k] // values.shape[2], trail[1, k] % values.shape[2])
+                    c = trail[1, k]
+                    links[1, c] = _UNLISTED
+                    tail = push(values, links, cap, tail, c // values.shape[2], c % values.shape[2])
                 waiting, rose = 0, 0
         for k in range(waiting):  # kept: every cell their relaxation goes through stayed
             links[1, trail[1, k]] = _UNLISTED
         while head != tail:  # over budget: the queue emptied, for the restart
             links[1, links[0, head]] = _UNLISTED
-            head += 1
-            if head == links.shape[1]:
-                head = 0
+            head = after(links, head)
         return raised, race
 
     @ti.func
