@@ -144,14 +144,19 @@ def main() -> None:
     parser.add_argument("after", nargs="?", help="another revision (default: the working tree)")
     parser.add_argument("--pairs", type=int, default=None, help=f"passes of both versions a map (default {PAIRS})")
     args = parser.parse_args()
-    pairs = args.pairs or (QUICK_PAIRS if args.quick else PAIRS)
+    pairs = args.pairs if args.pairs is not None else (QUICK_PAIRS if args.quick else PAIRS)
+    if pairs < 1:
+        parser.error(f"--pairs must be at least 1, got {pairs}")
     import tdp.engine
 
     tdp.engine.init_taichi()
     with tempfile.TemporaryDirectory() as scratch:
-        before = loaded("tdp_before", exported(args.before, Path(scratch) / "before"))
-        after = loaded("tdp_after", ROOT if args.after is None else exported(args.after, Path(scratch) / "after"))
-        versions = {"before": before, "after": after}
+        try:
+            before_root = exported(args.before, Path(scratch) / "before")
+            after_root = ROOT if args.after is None else exported(args.after, Path(scratch) / "after")
+        except ValueError as error:
+            parser.error(str(error))
+        versions = {"before": loaded("tdp_before", before_root), "after": loaded("tdp_after", after_root)}
         rows = []
         for name, occupied, goal in cases(QUICK_MAPS if args.quick else MAPS):
             rows += compare(versions, name, occupied, goal, pairs)
