@@ -41,10 +41,17 @@ ROOT = Path(__file__).resolve().parents[1]
 #: raise, then a lowering), the goal sealed in a room of a sixteenth of the map (the race), and their undoing.
 EDITS = ("box", "wall", "goal-room")
 KINDS = ("scratch",) + tuple(kind for edit in EDITS for kind in (edit, f"{edit} undone"))
-MAPS = ["random 256² corner", "random 256² random", "random 512² random", "random 1024² corner",
-        "random 512² 40 % centre", "maze 512² 1-cell corner", "maze 512² 2-cell random", "turtlebot3_world #0",
-        "nav2 depot #0"]
-QUICK_MAPS = ["random 64² corner", "random 128² random", "maze 64² 1-cell corner"]
+#: The maps and goals timed: a ``benchmarks.convergence`` case builder, its arguments, and the cases it builds to keep.
+MAPS = [(convergence.random_cases, (256,), ("random 256² corner", "random 256² random")),
+        (convergence.random_cases, (512,), ("random 512² random",)),
+        (convergence.random_cases, (1024,), ("random 1024² corner",)),
+        (convergence.random_cases, (512, 0.4), ("random 512² 40 % centre",)),
+        (convergence.maze_cases, (512, 1), ("maze 512² 1-cell corner",)),
+        (convergence.maze_cases, (512, 2), ("maze 512² 2-cell random",)),
+        (convergence.ros_cases, (), ("turtlebot3_world #0", "nav2 depot #0"))]
+QUICK_MAPS = [(convergence.random_cases, (64,), ("random 64² corner",)),
+              (convergence.random_cases, (128,), ("random 128² random",)),
+              (convergence.maze_cases, (64, 1), ("maze 64² 1-cell corner",))]
 PAIRS, QUICK_PAIRS = 30, 3  # passes of both versions a map (after a warm-up pass)
 
 
@@ -70,13 +77,9 @@ def loaded(name: str, root: Path):
     return package
 
 
-def cases(names: list[str]) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
-    """The maps and goals of ``benchmarks.convergence`` that ``names`` names, in its order."""
-    every = (convergence.random_cases(64) + convergence.random_cases(128) + convergence.random_cases(256)
-             + convergence.random_cases(512) + convergence.random_cases(1024) + convergence.random_cases(512, 0.4)
-             + convergence.maze_cases(64, 1) + convergence.maze_cases(512, 1) + convergence.maze_cases(512, 2)
-             + convergence.ros_cases())
-    return [case for case in every if case[0] in names]
+def cases(maps: list[tuple]) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """The (name, occupied, goal) cases that ``maps`` (as MAPS) keeps, each builder run once."""
+    return [case for build, arguments, names in maps for case in build(*arguments) if case[0] in names]
 
 
 def one_pass(field, edits: dict) -> dict[str, float]:
