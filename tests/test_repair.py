@@ -566,6 +566,63 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
         assert_equal_to_a_fresh_converge(engine, dict(corner_cutting=corner_cutting))
 
 
+def look_outcome(runs: list) -> tuple:
+    """The last mend's _MendResult and the cells its first look took (its work less the raise's and the lowering's)."""
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    return outcome, outcome.spent - engine_module.RAISE_COST * outcome.raised - outcome.lowered
+
+
+def test_a_look_at_blocked_cells_far_apart_ends_once_each_ones_sides_are_joined(monkeypatch):
+    """Blocked cells far apart (noise all over a map), one of them sealing a pocket of one cell: the parts round
+    them would merge only after flooding most of the map, but the look ends once the free cells beside each blocked
+    cell are one part - the pocket set to the cap, the edits found to cut nothing else off, so no race runs beside
+    the raise - after a small share of the map. The repair equals a fresh converge."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)  # the look is not cut short by the reset's price
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
+    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+    rng = np.random.default_rng(21)
+    occupied = rng.random((120, 120)) < 0.1
+    occupied[100:103, 20:23] = True  # a dead end of one cell, (101, 21), whose mouth (101, 22) is blocked
+    occupied[101, 21:24] = False
+    goal = (60, 60)
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    free = np.argwhere(~occupied)
+    noise = [(101, 22)] + [tuple(cell) for cell in free[rng.choice(len(free), 400, replace=False)]]
+    apart = [cell for k, cell in enumerate(noise) if cell != goal and abs(cell[0] - goal[0]) + abs(cell[1] - goal[1])
+             > 4 and all(max(abs(cell[0] - o[0]), abs(cell[1] - o[1])) > 6 for o in noise[:k])][:30]
+    cells = np.array(apart)
+    engine.set_cells(cells, np.ones(len(cells), bool))
+    engine.converge()
+    outcome, looked = look_outcome(runs)
+    assert engine.converged_by() == "mend" and np.isinf(engine.goal_distances()[101, 21])
+    assert outcome.raced < looked + outcome.raised // 2 and looked < 0.1 * len(free)  # the race kept to the look
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
+def test_a_pocket_between_two_blocked_cells_joins_what_they_cut_apart(monkeypatch):
+    """A tunnel three cells long through a wall, its two ends blocked: each blocked cell alone has an open side and
+    the pocket between them, but the two open sides are the two parts of the map - the look follows the part cut
+    off (the smaller) to its end and sets it to the cap, so nothing is left to raise (a look that took each blocked
+    cell's sides alone as joined would have stopped there, and the raise lifted the part cell by cell)."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 0)  # no race from the source to finish first
+    occupied = np.zeros((40, 60), bool)
+    occupied[:, 52:55] = True
+    occupied[20, 52:55] = False
+    engine = Engine(occupied, (20, 5))
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    engine.set_cells(np.array([(20, 52), (20, 54)]), np.ones(2, bool))
+    engine.converge()
+    outcome, _ = look_outcome(runs)
+    assert engine.converged_by() == "mend" and outcome.raised == 0
+    assert np.isinf(engine.goal_distances()[:, 53:]).all()
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
 def test_rounds_after_iterations_lower_every_tile_the_iterations_woke():
     """Edits, a few iterations after each (``step``), then rounds: the iterations woke tiles without keys, and a tile
     a search had keyed settled kept that key - lifted in the first round, it was then dropped as settled with cells
