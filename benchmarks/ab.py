@@ -7,8 +7,8 @@ a plain run times an uncommitted change against the last commit). A revision's `
 archive``), and each version is loaded as a package of its own, so that both run in one process on one Taichi runtime.
 Each pass times both, one after the other, the first swapped every pass: a from-scratch converge (``reset()``, then
 ``converge()``), and ``converge()`` after a 3 x 3 box, a wall of 16 cells on the route, a ring that seals the goal in
-a room and noise (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze and ROS
-maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a pass of both takes
+a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze
+and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a pass of both takes
 milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the geometric mean. Both
 versions' fields are checked equal before the timing starts.
 
@@ -38,9 +38,10 @@ from benchmarks.common import print_table, quick_parser, save_results
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The edits of ``benchmarks.convergence.repair_edit`` timed, each undone too: a box and a wall on the route (a
-#: raise, then a lowering), the goal sealed in a room of a sixteenth of the map (the race), noise (cells blocked and
-#: freed all over the map: many raises and lowerings in one mend, and on a maze a race), and their undoing.
-EDITS = ("box", "wall", "goal-room", "noise")
+#: raise, then a lowering), the goal sealed in a room of a sixteenth of the map (the race), noise and boxes (cells
+#: blocked and freed, boxes set down, all over the map: many raises and lowerings in one mend, on a maze a race), and
+#: their undoing.
+EDITS = ("box", "wall", "goal-room", "noise", "boxes")
 KINDS = ("scratch",) + tuple(kind for edit in EDITS for kind in (edit, f"{edit} undone"))
 #: The maps and goals timed: a ``benchmarks.convergence`` case builder, its arguments, and the cases it builds to keep.
 MAPS = [(convergence.random_cases, (256,), ("random 256² corner", "random 256² random")),

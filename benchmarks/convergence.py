@@ -22,10 +22,10 @@ square ring of obstacles, side an eighth of the map's, around the farthest reach
 to inf), the same pocket opened again (the ring removed, from the sealed field), the goal sealed in (a ring of side
 a sixteenth of the map's around it: every cell outside rises to inf, where a restart searches the few inside), the
 goal let out again, the goal sealed in a room (a ring of side a quarter of the map's: a twentieth to a tenth of the
-cells inside, which a restart searches while a mend would raise the rest), a goal move, and noise (64 free cells
+cells inside, which a restart searches while a mend would raise the rest), a goal move, noise (64 free cells
 blocked and 64 obstacle cells freed at random all over the map, as a costmap flickers: on a maze each blocked cell
-cuts a corridor and each freed one opens a wall). Each edit is timed
-(``set_occupied``, ``set_goal``), then its ``converge()`` (the edit undone, untimed, between repeats); the repair
+cuts a corridor and each freed one opens a wall) and boxes (eight 3 x 3 boxes set down at random all at once).
+Each edit is timed (``set_occupied``, ``set_goal``), then its ``converge()`` (the edit undone, untimed, between repeats); the repair
 is checked bit for bit against a fresh field's converge() on the edited map and set against that field's
 from-scratch converge(), the two timed in turn: the ratio is a repair's - the edit and its converge, what a user
 pays (the goal layer paints an edit in the converge's launch) - to the from-scratch converge's, again the median
@@ -80,9 +80,11 @@ WALL = 16
 #: The field against scipy's (float64) Dijkstra: float32 sums of sqrt 2 and sqrt 5 along routes of 10,000+ moves
 #: (mazes with 2- and 4-cell corridors) drift up to 3e-5 from the float64 ones; straight moves alone are exact.
 EQUAL_RTOL = 1e-4
-REPAIRS = ("box", "wall", "seal", "open", "goal-seal", "goal-open", "goal-room", "goal", "noise")
+REPAIRS = ("box", "wall", "seal", "open", "goal-seal", "goal-open", "goal-room", "goal", "noise", "boxes")
 #: Cells a noise edit blocks, and obstacle cells it frees, at random all over the map (a costmap's flicker).
 NOISE = 64
+#: 3 x 3 boxes a boxes edit sets down at once, centred on random free cells (obstacles appearing all over the map).
+BOXES = 8
 #: The shares of the cells it reached that the goal keeps when a door closes on the 1-cell maze (``doors``).
 DOOR_SHARES = (0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.9)
 #: Repairs are timed in pairs with a from-scratch converge until the from-scratch side adds up to about this many
@@ -284,8 +286,8 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
         seal()
         field.converge()
         return unseal, seal
-    if kind == "noise":
-        return noise_edit(field)
+    if kind in ("noise", "boxes"):
+        return scattered_edit(field, kind)
     if kind == "goal":
         free = np.argwhere(~field.occupied)
         target = tuple(int(v) for v in free[np.random.default_rng(len(free)).integers(len(free))])
@@ -303,18 +305,26 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
     return (lambda: field.set_occupied(cells)), (lambda: field.set_occupied(cells, False))
 
 
-def noise_edit(field: tdp.DistanceField):
-    """(apply, undo) of NOISE free cells blocked and NOISE obstacle cells freed at once, anywhere but the goal (the
-    same cells every run: the generator is seeded by the map's size)."""
+def scattered_edit(field: tdp.DistanceField, kind: str):
+    """(apply, undo) of edits all over the map, anywhere but the goal (the same cells every run: the generator is
+    seeded by the map's size): "noise", NOISE free cells blocked and NOISE obstacle cells freed at once; "boxes",
+    BOXES 3 x 3 boxes set down on free cells."""
     rng = np.random.default_rng(field.occupied.size)
     free, blocked = np.argwhere(~field.occupied), np.argwhere(field.occupied)
-    on = free[rng.choice(len(free), min(NOISE, len(free)), replace=False)]
+    if kind == "noise":
+        on = free[rng.choice(len(free), min(NOISE, len(free)), replace=False)]
+        off = blocked[rng.choice(len(blocked), min(NOISE, len(blocked)), replace=False)]
+    else:
+        centres = free[rng.choice(len(free), min(BOXES, len(free)), replace=False)]
+        on = (centres[:, None, :] + np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)])).reshape(-1, 2)
+        on = np.unique(on[((on >= 0) & (on < field.occupied.shape)).all(axis=1)], axis=0)
+        on, off = on[~field.occupied[on[:, 0], on[:, 1]]], np.zeros((0, 2), int)
     on = on[(on != field.goal).any(axis=1)]
-    off = blocked[rng.choice(len(blocked), min(NOISE, len(blocked)), replace=False)]
 
     def flip(block: bool) -> None:
         field.set_occupied(on, block)
-        field.set_occupied(off, not block)
+        if len(off):
+            field.set_occupied(off, not block)
     return (lambda: flip(True)), (lambda: flip(False))
 
 
@@ -418,7 +428,7 @@ def figure(results: list[dict], path: Path) -> None:
     left.set_xlabel("from-scratch converge() / scipy Dijkstra (lower is faster)")
     repaired = [r for r in results if r.get("repairs")]
     colours = dict(zip(REPAIRS, ["tab:green", "tab:orange", "tab:purple", "tab:cyan", "tab:brown", "tab:olive",
-                                 "tab:pink", "tab:red", "tab:gray"]))
+                                 "tab:pink", "tab:red", "tab:gray", "tab:blue"]))
     width = 0.8 / len(colours)
     for k, kind in enumerate(colours):  # one row per map, its changes side by side
         ratios = [next(q["ratio"] for q in r["repairs"] if q["kind"] == kind) for r in repaired]
