@@ -164,7 +164,10 @@ CUT_PARTS = 4096
 CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
-_EDITED = -1  # a blocked edit's mark in row 2 of ``cut_off``'s trail while it looks (a part's is the part + 1)
+#: A blocked edit's mark in row 2 of ``cut_off``'s trail when it checks its clusters (a part's is the part + 1):
+#: a cluster's root holds -(_ROOT + its side + 1), any other blocked cell -(its parent + 2).
+_ROOT = 1 << 29
+_EDITED = -_ROOT
 #: A mend's ``trail``: its first look's (parts, queue, marks: ``_cut_rules``), row 0 then its raised cells and seeds.
 _TRAIL_ROWS = 3
 #: Cells a search must take for its time to price a cell (``_Layers._fills``): a smaller one's time is mostly its
@@ -1309,22 +1312,38 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         trail[0, at(part, _FLAGS)] |= trail[0, at(other, _FLAGS)]
 
     @ti.func
+    def edited(pen: ti.template(), cells: ti.template(), penalties: ti.template(), k, width):
+        """The padded cell (row-major) of edit ``k`` if it blocked it and it is blocked now, else -1."""
+        i, j = cells[k, 0] + PAD, cells[k, 1] + PAD
+        return ti.select(penalties[k] > MAX_COST and blocked(pen[0, i, j]), i * width + j, -1)
+
+    @ti.func
     def mark_edits(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width,
                    mark):
-        """Mark the cells the edits blocked (row 2 of the trail: ``mark``, _EDITED or back to 0); returns how many
-        there are and whether each is alone - no other a step away (a route through blocked cells a step apart
-        enters and leaves them by the free cells beside any of them, not beside one)."""
-        edges, lone = 0, True
+        """Mark each cell the edits blocked in row 2 of the trail: ``mark``, _EDITED (a cluster of its own, no side
+        yet: ``cluster``) or 0 (unmarked)."""
         for k in range(cells.shape[0]):
-            i, j = cells[k, 0] + PAD, cells[k, 1] + PAD
-            if penalties[k] > MAX_COST and blocked(pen[0, i, j]):
-                trail[2, i * width + j] = mark
-                edges += 1
-        for k in range(cells.shape[0]):
-            if penalties[k] > MAX_COST and mark != 0:
-                for m in ti.static(steps):
-                    lone &= trail[2, (cells[k, 0] + PAD + m.dr) * width + cells[k, 1] + PAD + m.dc] != _EDITED
-        return edges, lone
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                trail[2, c] = mark
+
+    @ti.func
+    def cluster(trail: ti.template(), c):
+        """The root of the cluster of blocked cell ``c``: union-find in row 2 of the trail, where a root holds
+        -(_ROOT + its side + 1) (side -1: none yet) and any other cell -(its parent + 2); path halving."""
+        while trail[2, c] > -_ROOT:
+            parent = -trail[2, c] - 2
+            if trail[2, parent] > -_ROOT:
+                trail[2, c] = trail[2, parent]
+            c = parent
+        return c
+
+    @ti.func
+    def unite(trail: ti.template(), a, b):
+        """One cluster of the clusters of blocked cells ``a`` and ``b`` (before any has a side)."""
+        root, other = cluster(trail, a), cluster(trail, b)
+        if root != other:
+            trail[2, other] = -(root + 2)
 
     @ti.func
     def closed(trail: ti.template(), part):
@@ -1332,71 +1351,86 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         return trail[0, at(part, _FLAGS)] & _CLOSED != 0
 
     @ti.func
-    def beside(trail: ti.template(), pen: ti.template(), cells: ti.template(), k, width, dr, dc):
-        """The root of the part of the free cell a step (dr, dc) from edit ``k`` (-1: none looked at it)."""
-        i, j = cells[k, 0] + PAD + dr, cells[k, 1] + PAD + dc
-        marked = part_of(trail, i * width + j)
+    def beside(trail: ti.template(), pen: ti.template(), c, width, dr, dc):
+        """The root of the part of the free cell a step (dr, dc) from padded cell ``c`` (-1: none looked at it)."""
+        there = c + dr * width + dc
+        marked = part_of(trail, there)
         found = -1
-        if marked >= 0 and not blocked(pen[0, i, j]):
+        if marked >= 0 and not blocked(pen[0, there // width, there % width]):
             found = root(trail, marked)
         return found
 
     @ti.func
-    def pockets_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
-                       width):
-        """The closed parts beside each blocked cell made one (a pocket between edits joins what they cut)."""
+    def clustered(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width):
+        """The blocked cells in clusters: those a step apart in one, and those beside one pocket (a closed part;
+        the pockets beside one blocked cell made one first)."""
+        mark_edits(trail, pen, cells, penalties, width, _EDITED)
         for k in range(cells.shape[0]):
-            if penalties[k] > MAX_COST:
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
                 first = -1
                 for m in ti.static(steps):
-                    part = beside(trail, pen, cells, k, width, m.dr, m.dc)
+                    if trail[2, c + m.dr * width + m.dc] < 0:  # a blocked cell a step away
+                        unite(trail, c, c + m.dr * width + m.dc)
+                    part = beside(trail, pen, c, width, m.dr, m.dc)
                     if part >= 0 and closed(trail, part):
                         if first < 0:
                             first = part
                         elif part != first:
                             merge(trail, first, part)
+        for k in range(cells.shape[0]):  # a pocket's cells waiting (0) hold the first blocked cell beside it + 1
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                for m in ti.static(steps):
+                    part = beside(trail, pen, c, width, m.dr, m.dc)
+                    if part >= 0 and closed(trail, part):
+                        if trail[0, at(part, _WAITING)] == 0:
+                            trail[0, at(part, _WAITING)] = c + 1
+                        else:
+                            unite(trail, trail[0, at(part, _WAITING)] - 1, c)
 
     @ti.func
     def sides_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
-                     width, pockets):
-        """Whether each blocked cell's free neighbours in open parts lie in one part - and, with ``pockets``, the
-        open part beside each closed one (``pockets_joined``) is the same for every blocked cell beside it (a
-        closed part's cells waiting, 0, hold it + 1 meanwhile). It stops at the first blocked cell whose sides are
-        apart."""
+                     width, clusters):
+        """Whether the free cells beside each blocked cell that lie in open parts (not closed) are all in one part -
+        with ``clusters``, one part for each cluster (``clustered``), kept in its root. It stops at the first
+        blocked cell whose sides are apart."""
         apart, k = False, 0
         while k < cells.shape[0] and not apart:
-            if penalties[k] > MAX_COST:
-                side, pocket = -1, -1
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                side, top = -1, c
+                if clusters:
+                    top = cluster(trail, c)
+                    side = -trail[2, top] - _ROOT - 1
                 for m in ti.static(steps):
-                    part = beside(trail, pen, cells, k, width, m.dr, m.dc)
-                    if part >= 0 and closed(trail, part):
-                        pocket = part
-                    elif part >= 0 and side < 0:
-                        side = part
-                    elif part >= 0 and part != side:
-                        apart = True
-                if pockets and side >= 0 and pocket >= 0:
-                    seen = trail[0, at(pocket, _WAITING)]
-                    apart |= seen != 0 and seen != side + 1
-                    trail[0, at(pocket, _WAITING)] = side + 1
+                    part = beside(trail, pen, c, width, m.dr, m.dc)
+                    if part >= 0 and not closed(trail, part):
+                        if side < 0:
+                            side = part
+                        elif part != side:
+                            apart = True
+                if clusters:
+                    trail[2, top] = -(_ROOT + side + 1)
             k += 1
         return not apart
 
     @ti.func
     def joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width):
-        """Whether the edits cut nothing from the source but pockets (closed parts, set to the cap): the free cells
-        beside each blocked cell lie in one part once the pockets beside one blocked cell are one, and a pocket
-        between blocked cells joins the same part at all of them. A route through a blocked cell then has a way
-        round it, or ran through a pocket, and a route through a pocket entered and left it by blocked cells whose
-        open sides are one part. A quick look at the open sides alone first: most cuts show there."""
+        """Whether the edits cut nothing off the source but pockets (closed parts, set to the cap): the free cells
+        in open parts beside the blocked cells of each cluster (``clustered``) lie in one part. A route through
+        blocked cells enters and leaves a run of them a step apart - one cluster - by free cells beside it, joined
+        round it; a route into a pocket leaves it by a blocked cell beside it, whose cluster is the pocket's. Each
+        blocked cell's own sides first: most cuts show there, at once. Leaves the blocked cells marked."""
         ok = sides_joined(trail, pen, cells, penalties, width, False)
         if ok:
-            pockets_joined(trail, pen, cells, penalties, width)
+            clustered(trail, pen, cells, penalties, width)
             ok = sides_joined(trail, pen, cells, penalties, width, True)
             for k in range(cells.shape[0]):  # the pockets' cells waiting back at 0
-                if penalties[k] > MAX_COST:
+                c = edited(pen, cells, penalties, k, width)
+                if c >= 0:
                     for m in ti.static(steps):
-                        part = beside(trail, pen, cells, k, width, m.dr, m.dc)
+                        part = beside(trail, pen, c, width, m.dr, m.dc)
                         if part >= 0 and closed(trail, part):
                             trail[0, at(part, _WAITING)] = 0
         return ok
@@ -1406,27 +1440,26 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                 cells: ti.template(), penalties: ti.template(), cap, budget, race, spare: ti.template(),
                 race_links: ti.template()):
         """Breadth-first from every free cell beside a cell the edits blocked, each a part of its own, in one queue:
-        parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it
-        joins. It stops once one part is left (every other merged into it or closed), or - where no blocked cell
-        lies a step from another - once the sides of each are one part (``joined``: blocked cells far apart, as
-        noise all over a map, leave a part round each that would merge with the others only after most of the
-        map), the source's part ran dry, it has looked at ``budget`` cells, the ``race`` (its lead times the cells
-        looked at, in ``spare``) has finished, or the blocked cells have more than CUT_PARTS free cells beside
-        them. If the edits left the source's part closed, the cells in it are what a restart searches (none if
-        they blocked the source); else the parts closed without the source - pockets sealed off - have their cells
-        set to the cap at once (no raise). If every part merged into one, the edits cut nothing: a way round each
-        blocked cell joins its neighbours, so a route through it has a way round too. Returns (the cells the
-        source's closed part holds, -1 if none; cells looked at; 1 if it stopped short with parts apart - the
-        source may lie in one closed - else 0) and the race. The verdict only chooses how the mend goes on (a race
-        or none): the raise that follows finds every cell that must rise either way."""
+        parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it joins.
+        It stops once one part is left (every other merged into it or closed), or once the sides of each cluster of
+        blocked cells are one part (``joined``: clusters far apart, as boxes or noise all over a map, leave a part round
+        each that would merge with the others only after most of the map), the source's part ran dry, it has looked at
+        ``budget`` cells, the ``race`` (its lead times the cells looked at, in ``spare``) has finished, or the blocked
+        cells have more than CUT_PARTS free cells beside them. If the edits left the source's part closed, the cells in
+        it are what a restart searches (none if they blocked the source); else the parts closed without the source -
+        pockets sealed off - have their cells set to the cap at once (no raise). If every part merged into one, the
+        edits cut nothing: a way round each blocked cell joins its neighbours, so a route through it has a way round
+        too. Returns (the cells the source's closed part holds, -1 if none; cells looked at; 1 if it stopped short with
+        parts apart - the source may lie in one closed - else 0) and the race. The verdict only chooses how the mend
+        goes on (a race or none): the raise that follows finds every cell that must rise either way."""
         width = values.shape[2]
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
         lost = blocked(pen[0, header[SOURCE_ROW], header[SOURCE_COL]])  # no part holds it: it reaches nothing
-        edges, lone = mark_edits(trail, pen, cells, penalties, width, _EDITED)
-        live, tail, crowded = 0, 0, False
+        live, tail, crowded, edges = 0, 0, False, 0
         for k in range(cells.shape[0]):
             if penalties[k] > MAX_COST:
+                edges += 1
                 for m in ti.static(steps):
                     i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
                     if part_of(trail, i * width + j) < 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
@@ -1436,8 +1469,9 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                             tail = visit(trail, live, i * width + j, tail, source)
                             live += 1
                         crowded |= live == most
-        # parts apart may yet be the ways round blocked cells far apart: then each one's sides are joined (``joined``)
-        head, sealed, cut, check_at = 0, -1, live > 1, ti.select(lone, edges, 0)
+        # parts apart may yet be the ways round clusters of blocked cells far apart, each joined round (``joined``):
+        # checked once there are no more parts than blocked cells, each time the cells looked at have doubled
+        head, sealed, cut, check_at = 0, -1, live > 1, edges
         while not (crowded or lost or over(spare, race)) and cut and head < tail and head < budget and sealed < 0:
             c = trail[1, head]
             head += 1
@@ -1462,10 +1496,10 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                 if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
                     sealed = part
             cut = live > 1
-            if cut and live <= check_at and sealed < 0:  # as few parts as blocked cells: each edit's sides may be one
+            if cut and live <= edges and head >= check_at and sealed < 0:
                 cut = not joined(trail, pen, cells, penalties, width)
-                check_at = live - ti.max(1, live // 4)
-        if cut and lone and not (crowded or lost) and sealed < 0 and live <= edges:  # stopped short: as it stands
+                check_at = 2 * head
+        if cut and not (crowded or lost) and sealed < 0 and live <= edges:  # stopped short: as it stands
             cut = not joined(trail, pen, cells, penalties, width)
         mark_edits(trail, pen, cells, penalties, width, 0)
         reached = ti.select(sealed >= 0 or lost, 0, -1)

@@ -602,6 +602,39 @@ def test_a_look_at_blocked_cells_far_apart_ends_once_each_ones_sides_are_joined(
     assert_equal_to_a_fresh_converge(engine, {})
 
 
+def test_a_look_at_boxes_far_apart_ends_once_each_box_is_joined_round_and_a_thick_ring_is_not(monkeypatch):
+    """Boxes of 3 x 3 far apart: the blocked cells a step apart are one cluster, whose sides join round it, and the
+    look ends once each box's have - no race beside the raise. A ring two cells thick round the goal is a cluster
+    too, each of its cells with free cells on one side only: its two sides are apart, and the race that follows
+    restarts on the pocket. Both repairs equal a fresh converge."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
+    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+    rng = np.random.default_rng(22)
+    occupied = rng.random((120, 120)) < 0.05
+    goal = (60, 60)
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    boxes = np.array([(r + i, c + j) for r, c in ((20, 20), (20, 95), (95, 30), (90, 90), (60, 20), (30, 60))
+                      for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    boxes = boxes[~occupied[boxes[:, 0], boxes[:, 1]]]
+    engine.set_cells(boxes, np.ones(len(boxes), bool))
+    engine.converge()
+    outcome, looked = look_outcome(runs)
+    assert engine.converged_by() == "mend" and outcome.raised > 100
+    assert outcome.raced < looked + outcome.raised // 2 and looked < 0.1 * np.count_nonzero(~occupied)
+    assert_equal_to_a_fresh_converge(engine, {})
+    engine.set_cells(boxes, np.zeros(len(boxes), bool))
+    engine.converge()
+    ring = ring_round(occupied, goal, 5)
+    engine.set_cells(ring, np.ones(len(ring), bool))
+    engine.converge()
+    assert engine.converged_by() == "search"
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
 def test_a_pocket_between_two_blocked_cells_joins_what_they_cut_apart(monkeypatch):
     """A tunnel three cells long through a wall, its two ends blocked: each blocked cell alone has an open side and
     the pocket between them, but the two open sides are the two parts of the map - the look follows the part cut
