@@ -1362,16 +1362,32 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
 
     @ti.func
     def clustered(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width):
-        """The blocked cells in clusters: those a step apart in one, and those beside one pocket (a closed part;
-        the pockets beside one blocked cell made one first)."""
+        """The blocked cells marked and a step apart in one cluster (``cluster``); returns how many clusters (no
+        more parts than that can be left once each cluster's sides are one)."""
         mark_edits(trail, pen, cells, penalties, width, _EDITED)
+        for k in range(cells.shape[0]):
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                for m in ti.static(steps):
+                    if trail[2, c + m.dr * width + m.dc] < 0:
+                        unite(trail, c, c + m.dr * width + m.dc)
+        roots = 0
+        for k in range(cells.shape[0]):
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0 and trail[2, c] <= -_ROOT:
+                roots += 1
+        return roots
+
+    @ti.func
+    def pockets_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
+                       width):
+        """The clusters beside one pocket (a closed part) made one, the pockets beside one blocked cell made one
+        first (closed parts stay so: the unions hold from one check to the next); every cluster's side forgotten."""
         for k in range(cells.shape[0]):
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 first = -1
                 for m in ti.static(steps):
-                    if trail[2, c + m.dr * width + m.dc] < 0:  # a blocked cell a step away
-                        unite(trail, c, c + m.dr * width + m.dc)
                     part = beside(trail, pen, c, width, m.dr, m.dc)
                     if part >= 0 and closed(trail, part):
                         if first < 0:
@@ -1381,6 +1397,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         for k in range(cells.shape[0]):  # a pocket's cells waiting (0) hold the first blocked cell beside it + 1
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
+                trail[2, cluster(trail, c)] = _EDITED
                 for m in ti.static(steps):
                     part = beside(trail, pen, c, width, m.dr, m.dc)
                     if part >= 0 and closed(trail, part):
@@ -1393,7 +1410,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
     def sides_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
                      width, clusters):
         """Whether the free cells beside each blocked cell that lie in open parts (not closed) are all in one part -
-        with ``clusters``, one part for each cluster (``clustered``), kept in its root. It stops at the first
+        with ``clusters``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops at the first
         blocked cell whose sides are apart."""
         apart, k = False, 0
         while k < cells.shape[0] and not apart:
@@ -1418,13 +1435,13 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
     @ti.func
     def joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width):
         """Whether the edits cut nothing off the source but pockets (closed parts, set to the cap): the free cells
-        in open parts beside the blocked cells of each cluster (``clustered``) lie in one part. A route through
-        blocked cells enters and leaves a run of them a step apart - one cluster - by free cells beside it, joined
-        round it; a route into a pocket leaves it by a blocked cell beside it, whose cluster is the pocket's. Each
-        blocked cell's own sides first: most cuts show there, at once. Leaves the blocked cells marked."""
+        in open parts beside the blocked cells of each cluster (``clustered``, then ``pockets_joined``) lie in one
+        part. A route through blocked cells enters and leaves a run of them a step apart - one cluster - by free
+        cells beside it, joined round it; a route into a pocket leaves it by a blocked cell beside it, whose cluster
+        is the pocket's. Each blocked cell's own sides first: most cuts show there, at once."""
         ok = sides_joined(trail, pen, cells, penalties, width, False)
         if ok:
-            clustered(trail, pen, cells, penalties, width)
+            pockets_joined(trail, pen, cells, penalties, width)
             ok = sides_joined(trail, pen, cells, penalties, width, True)
             for k in range(cells.shape[0]):  # the pockets' cells waiting back at 0
                 c = edited(pen, cells, penalties, k, width)
@@ -1456,10 +1473,10 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
         lost = blocked(pen[0, header[SOURCE_ROW], header[SOURCE_COL]])  # no part holds it: it reaches nothing
-        live, tail, crowded, edges = 0, 0, False, 0
+        clusters = clustered(trail, pen, cells, penalties, width)
+        live, tail, crowded = 0, 0, False
         for k in range(cells.shape[0]):
             if penalties[k] > MAX_COST:
-                edges += 1
                 for m in ti.static(steps):
                     i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
                     if part_of(trail, i * width + j) < 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
@@ -1470,8 +1487,8 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                             live += 1
                         crowded |= live == most
         # parts apart may yet be the ways round clusters of blocked cells far apart, each joined round (``joined``):
-        # checked once there are no more parts than blocked cells, each time the cells looked at have doubled
-        head, sealed, cut, check_at = 0, -1, live > 1, edges
+        # checked once there are no more parts than clusters, each time the cells looked at have doubled
+        head, sealed, cut, check_at = 0, -1, live > 1, clusters
         while not (crowded or lost or over(spare, race)) and cut and head < tail and head < budget and sealed < 0:
             c = trail[1, head]
             head += 1
@@ -1496,10 +1513,10 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                 if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
                     sealed = part
             cut = live > 1
-            if cut and live <= edges and head >= check_at and sealed < 0:
+            if cut and live <= clusters and head >= check_at and sealed < 0:
                 cut = not joined(trail, pen, cells, penalties, width)
                 check_at = 2 * head
-        if cut and not (crowded or lost) and sealed < 0 and live <= edges:  # stopped short: as it stands
+        if cut and not (crowded or lost) and sealed < 0 and live <= clusters:  # stopped short: as it stands
             cut = not joined(trail, pen, cells, penalties, width)
         mark_edits(trail, pen, cells, penalties, width, 0)
         reached = ti.select(sealed >= 0 or lost, 0, -1)
