@@ -1410,8 +1410,8 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
     def sides_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
                      width, clusters):
         """Whether the free cells beside each blocked cell that lie in open parts (not closed) are all in one part -
-        with ``clusters``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops at the first
-        blocked cell whose sides are apart."""
+        with ``clusters``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops
+        at the first blocked cell whose sides are apart."""
         apart, k = False, 0
         while k < cells.shape[0] and not apart:
             c = edited(pen, cells, penalties, k, width)
