@@ -165,7 +165,8 @@ CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
 #: A blocked edit's mark in row 2 of ``cut_off``'s trail when it checks its clusters (a part's is the part + 1):
-#: a cluster's root holds -(_ROOT + its side + 1), any other blocked cell -(its parent + 2).
+#: a cluster's root holds -(_ROOT + its side + 1), any other blocked cell -(its parent + 2) - so layers of _ROOT - 2
+#: padded cells or more (23,000 cells a side) are not checked.
 _ROOT = 1 << 29
 _EDITED = -_ROOT
 #: A mend's ``trail``: its first look's (parts, queue, marks: ``_cut_rules``), row 0 then its raised cells and seeds.
@@ -1473,7 +1474,9 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
         lost = blocked(pen[0, header[SOURCE_ROW], header[SOURCE_COL]])  # no part holds it: it reaches nothing
-        clusters = clustered(trail, pen, cells, penalties, width)
+        clusters = 0  # a layer of 2**29 cells or more would overflow the clusters' marks: no check there
+        if ti.i64(values.shape[1]) * width < _ROOT - 2:
+            clusters = clustered(trail, pen, cells, penalties, width)
         live, tail, crowded = 0, 0, False
         for k in range(cells.shape[0]):
             if penalties[k] > MAX_COST:
