@@ -1352,13 +1352,12 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         return trail[0, at(part, _FLAGS)] & _CLOSED != 0
 
     @ti.func
-    def beside(trail: ti.template(), pen: ti.template(), c, width, dr, dc):
-        """The root of the part of the free cell a step (dr, dc) from padded cell ``c`` (-1: none looked at it)."""
-        there = c + dr * width + dc
-        marked = part_of(trail, there)
-        found = -1
-        if marked >= 0 and not blocked(pen[0, there // width, there % width]):
-            found = root(trail, marked)
+    def beside(trail: ti.template(), c, width, dr, dc):
+        """The root of the part of the cell a step (dr, dc) from padded cell ``c`` (-1: none - blocked, or not
+        looked at: only free cells join parts)."""
+        found = part_of(trail, c + dr * width + dc)
+        if found >= 0:
+            found = root(trail, found)
         return found
 
     @ti.func
@@ -1389,7 +1388,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
             if c >= 0:
                 first = -1
                 for m in ti.static(steps):
-                    part = beside(trail, pen, c, width, m.dr, m.dc)
+                    part = beside(trail, c, width, m.dr, m.dc)
                     if part >= 0 and closed(trail, part):
                         if first < 0:
                             first = part
@@ -1400,7 +1399,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
             if c >= 0:
                 trail[2, cluster(trail, c)] = _EDITED
                 for m in ti.static(steps):
-                    part = beside(trail, pen, c, width, m.dr, m.dc)
+                    part = beside(trail, c, width, m.dr, m.dc)
                     if part >= 0 and closed(trail, part):
                         if trail[0, at(part, _WAITING)] == 0:
                             trail[0, at(part, _WAITING)] = c + 1
@@ -1409,26 +1408,26 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
 
     @ti.func
     def sides_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
-                     width, clusters):
+                     width, per_cluster):
         """Whether the free cells beside each blocked cell that lie in open parts (not closed) are all in one part -
-        with ``clusters``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops
+        ``per_cluster``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops
         at the first blocked cell whose sides are apart."""
         apart, k = False, 0
         while k < cells.shape[0] and not apart:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 side, top = -1, c
-                if clusters:
+                if per_cluster:
                     top = cluster(trail, c)
                     side = -trail[2, top] - _ROOT - 1
                 for m in ti.static(steps):
-                    part = beside(trail, pen, c, width, m.dr, m.dc)
+                    part = beside(trail, c, width, m.dr, m.dc)
                     if part >= 0 and not closed(trail, part):
                         if side < 0:
                             side = part
                         elif part != side:
                             apart = True
-                if clusters:
+                if per_cluster:
                     trail[2, top] = -(_ROOT + side + 1)
             k += 1
         return not apart
@@ -1448,7 +1447,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                 c = edited(pen, cells, penalties, k, width)
                 if c >= 0:
                     for m in ti.static(steps):
-                        part = beside(trail, pen, c, width, m.dr, m.dc)
+                        part = beside(trail, c, width, m.dr, m.dc)
                         if part >= 0 and closed(trail, part):
                             trail[0, at(part, _WAITING)] = 0
         return ok
