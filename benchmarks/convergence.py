@@ -16,24 +16,23 @@ under 5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm m
 costs x 1000; it cannot forbid corner cutting, so its graph has more edges than ours) and scikit-fmm's whole-field
 distance (a different, continuous distance).
 
-Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle
-of the optimal route from the farthest reachable cell, a wall of 16 cells across that route, a pocket sealed (a
-square ring of obstacles, side an eighth of the map's, around the farthest reachable cell: every cell inside rises
-to inf), the same pocket opened again (the ring removed, from the sealed field), the goal sealed in (a ring of side
-a sixteenth of the map's around it: every cell outside rises to inf, where a restart searches the few inside), the
-goal let out again, the goal sealed in a room (a ring of side a quarter of the map's: a twentieth to a tenth of the
-cells inside, which a restart searches while a mend would raise the rest), a goal move, noise (64 free cells
-blocked and 64 obstacle cells freed at random all over the map, as a costmap flickers: on a maze each blocked cell
-cuts a corridor and each freed one opens a wall) and boxes (eight 3 x 3 boxes set down at random all at once).
-Each edit is timed (``set_occupied``, ``set_goal``), then its ``converge()`` (the edit undone, untimed, between repeats); the repair
-is checked bit for bit against a fresh field's converge() on the edited map and set against that field's
-from-scratch converge(), the two timed in turn: the ratio is a repair's - the edit and its converge, what a user
-pays (the goal layer paints an edit in the converge's launch) - to the from-scratch converge's, again the median
-of each pair's (as many pairs as fill about REPAIR_PAIRS_S seconds of from-scratch converges, from the repeats up
-to MAX_REPAIR_PAIRS); the converge's alone beside it. A repair's work follows the cells it changes: each reports
-how many cells' distances it changed, its converge's time per changed cell, and the from-scratch converge's per
-cell it reaches; and the edit with its converge timed again back to back, with no other field's converge between
-them (caches warm, as in a planner's loop).
+Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle of the
+optimal route from the farthest reachable cell, a wall of 16 cells across that route, a pocket sealed (a square ring of
+obstacles, side an eighth of the map's, around the farthest reachable cell: every cell inside rises to inf), the same
+pocket opened again (the ring removed, from the sealed field), the goal sealed in (a ring of side a sixteenth of the
+map's around it: every cell outside rises to inf, where a restart searches the few inside), the goal let out again, the
+goal sealed in a room (a ring of side a quarter of the map's: a twentieth to a tenth of the cells inside, which a
+restart searches while a mend would raise the rest), a goal move, noise (64 free cells blocked and 64 obstacle cells
+freed at random all over the map, as a costmap flickers: on a maze each blocked cell cuts a corridor and each freed one
+opens a wall) and boxes (eight 3 x 3 boxes set down at random all at once). Each edit is timed (``set_occupied``,
+``set_goal``), then its ``converge()`` (the edit undone, untimed, between repeats); the repair is checked bit for bit
+against a fresh field's converge() on the edited map and set against that field's from-scratch converge(), the two timed
+in turn: the ratio is a repair's - the edit and its converge, what a user pays (the goal layer paints an edit in the
+converge's launch) - to the from-scratch converge's, again the median of each pair's (as many pairs as fill about
+REPAIR_PAIRS_S seconds of from-scratch converges, from the repeats up to MAX_REPAIR_PAIRS); the converge's alone beside
+it. A repair's work follows the cells it changes: each reports how many cells' distances it changed, its converge's time
+per changed cell, and the from-scratch converge's per cell it reaches; and the edit with its converge timed again back
+to back, with no other field's converge between them (caches warm, as in a planner's loop).
 
 Doors (not with --quick): on the 1-cell perfect maze of side 512 with its corner goal, a door closes - one cell of
 the optimal route from the farthest reachable cell - and the goal keeps the cells on its side: DOOR_SHARES of the
@@ -77,6 +76,8 @@ LARGE = 65536  # maps from this size on get the repair cases (4096 with --quick)
 CONVERGE_LARGE = 32768  # maps from this size on count for the from-scratch converge's worst-case target
 FAST_S, FAST_REPEATS = 0.005, 5  # a reference solve under 5 ms gets 5 times the repeats: its timings are noisier
 WALL = 16
+#: A 3 x 3 box's cells, as offsets from its centre.
+BOX = [(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
 #: The field against scipy's (float64) Dijkstra: float32 sums of sqrt 2 and sqrt 5 along routes of 10,000+ moves
 #: (mazes with 2- and 4-cell corridors) drift up to 3e-5 from the float64 ones; straight moves alone are exact.
 EQUAL_RTOL = 1e-4
@@ -295,7 +296,7 @@ def repair_edit(field: tdp.DistanceField, kind: str, reference: np.ndarray):
     (r, c), (dr, dc) = route_middle(field, reference)
     rows, cols = reference.shape
     if kind == "box":
-        cells = [(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
+        cells = [(r + i, c + j) for i, j in BOX]
     elif abs(dr) >= abs(dc):  # the route runs along the rows here: the wall runs across them
         cells = [(r, c + j) for j in range(-WALL // 2, WALL // 2)]
     else:
@@ -316,7 +317,7 @@ def scattered_edit(field: tdp.DistanceField, kind: str):
         off = blocked[rng.choice(len(blocked), min(NOISE, len(blocked)), replace=False)]
     else:
         centres = free[rng.choice(len(free), min(BOXES, len(free)), replace=False)]
-        on = (centres[:, None, :] + np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)])).reshape(-1, 2)
+        on = (centres[:, None, :] + np.array(BOX)).reshape(-1, 2)
         on = np.unique(on[((on >= 0) & (on < field.occupied.shape)).all(axis=1)], axis=0)
         on, off = on[~field.occupied[on[:, 0], on[:, 1]]], np.zeros((0, 2), int)
     on = on[(on != field.goal).any(axis=1)]
