@@ -38,10 +38,10 @@ from benchmarks.common import print_table, quick_parser, save_results
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The edits of ``benchmarks.convergence.repair_edit`` timed, each undone too: a box and a wall on the route (a
-#: raise, then a lowering), the goal sealed in a room of a sixteenth of the map (the race), noise and boxes (cells
-#: blocked and freed, boxes set down, all over the map: many raises and lowerings in one mend, on a maze a race), and
-#: their undoing.
-EDITS = ("box", "wall", "goal-room", "noise", "boxes")
+#: raise, then a lowering), a pocket sealed round the farthest cell (its cells raised: a mend's look), the goal sealed
+#: in a room of a sixteenth of the map (the race), noise and boxes (cells blocked and freed, boxes set down, all over
+#: the map: many raises and lowerings in one mend, on a maze a race), and their undoing.
+EDITS = ("box", "wall", "seal", "goal-room", "noise", "boxes")
 KINDS = ("scratch",) + tuple(kind for edit in EDITS for kind in (edit, f"{edit} undone"))
 #: The maps and goals timed: a ``benchmarks.convergence`` case builder, its arguments, and the cases it builds to keep.
 MAPS = [(convergence.random_cases, (256,), ("random 256² corner", "random 256² random")),
