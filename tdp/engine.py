@@ -150,6 +150,17 @@ RACE_LEAD = 2
 #: moved, while with a share of 1/4 a pocket sealed on nav2's warehouse, its ring nearer the source than a fifth of
 #: the cells, cost 4.9x more.
 RACE_HEAD_SHARE = 1 / 8
+#: Where the last search's log says many cells lie below every value within reach of the edits (no cell there
+#: changes), the race starts from them instead of the source (``seed_bound``): one pass over the layer copies them
+#: into its buffer and lists those within a move of the bound, and the race takes only the cells at or past it - a box
+#: that cuts a maze's corridor leaves the goal's side as it was, which a race from the source took again. The pass
+#: costs a padded cell about a SEED_PASS-th of a cell a search takes (measured on the 2-core VM: 1.2-1.5 ns against
+#: 50-65), so it is made once the mend's look and raise have cost SEED_AFTER times as much: a mend that would have
+#: finished just after pays the pass, the race's work and the refill of its buffer, about half as much again (at once,
+#: a box on a random 512² map with 40 % obstacles, mended in 0.6 ms, cost 1.9).
+SEED_PASS = 32
+SEED_AFTER = 2
+_SEED_MOST = 1 << 24  # a seeded race's bound is below this: float32 holds every whole number up to it
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
 CUT_PARTS = 4096
@@ -279,8 +290,9 @@ class _MendRun(NamedTuple):
     search takes: its look and raise past it, the mend gives way to a restart), a restart's price and a reset's
     fills in those units, the cells its first look at the cut may take (``_cut_rules``), the most a move adds to a
     value (``_longest_move``), its race's lead (RACE_LEAD) and the most cells its head start may be
-    (RACE_HEAD_SHARE of a restart), whether every tile is settled already (1: the hand-over stamps the frontier
-    alone), and whether to mend (0: a launch that only compiles)."""
+    (RACE_HEAD_SHARE of a restart), the mend's work a race from the kept cells waits for and the price of its pass
+    (``seed_bound``: SEED_AFTER and SEED_PASS), whether every tile is settled already (1: the hand-over stamps the
+    frontier alone), and whether to mend (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -293,6 +305,8 @@ class _MendRun(NamedTuple):
     longest_move: int
     lead: int
     head: int
+    seed_wait: int
+    seed_pass: int
     settled: int
     go: int
 
@@ -302,8 +316,9 @@ class _MendResult(NamedTuple):
     raised to the cap, the cells the source still reaches if its look counted them (-1: not), its work in cells a
     search takes (the race's apart), the cells its race took as the mend ran and its head start (``race_head``),
     whether it gave up for a restart (the race finished first, a restart cost less than the rest of the mend, or its
-    look and raise passed the budget), and the cells its lowering took - having given up, its race's search took in
-    all (the buckets and the frontier then the race's)."""
+    look and raise passed the budget), the cells its lowering took - having given up, its race's search took in
+    all (the buckets and the frontier then the race's) -, and whether its race started from the cells the edits left
+    as they were (``seed_bound``: the spare buffer then holds them)."""
 
     buckets: int
     frontier: int
@@ -314,6 +329,7 @@ class _MendResult(NamedTuple):
     head: int
     gave_up: int
     lowered: int
+    seeded: int
 
 
 class _PaintRun(NamedTuple):
@@ -1494,7 +1510,7 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         while not (crowded or lost or over(spare, race)) and cut and head < tail and head < budget and sealed < 0:
             c = trail[1, head]
             head += 1
-            race = pace(spare, pen, race_links, race, head, cap)
+            race = pace(values, spare, pen, race_links, race, head, cap)
             part = root(trail, part_of(trail, c))
             i, j = c // width, c % width
             for m in ti.static(steps):
@@ -1573,6 +1589,17 @@ def race_head(kept: int, most: int) -> int:
     return kept if kept <= most else 0
 
 
+def seed_bound(below: float, kept: int, costs: int, focus_row: int) -> int:
+    """The bound below which a mend's race starts from the cells its edits left as they were (``_race_rules``'
+    ``seed``): ``below``, the least value around an edit before it (no cell below it changes: ``_search_kernels``'
+    mend), floored, where the last search's log says that the ``kept`` cells below it are more than such a race
+    ``costs`` before it takes a cell (in cells a search takes: the mend's work it waits for and its pass), which a
+    race from the source would take, each with the mend's work its lead allows beside it or in its head start;
+    unfocused (``focus_row`` -1) and below 2**24, up to which float32 holds every whole number. Else -1: the race
+    starts from the source. A pure rule, compiled into the mend as ``_seed_bound``."""
+    return int(below) if focus_row < 0 and below < _SEED_MOST and kept > costs else -1
+
+
 def logged_cells(step: int) -> int:
     """The cells a search has taken when it logs ``step`` (``_race_rules``): four steps to each doubling, 1, 1, 1, 1,
     2, 2, 3, 3, 4, 5, 6, 7, 8, 10 ... (2**(step // 4) x (1 + (step % 4) / 4), floored)."""
@@ -1580,8 +1607,11 @@ def logged_cells(step: int) -> int:
 
 
 _doomed, _race_lead, _race_head = ti.func(restart_is_cheaper), ti.func(race_lead), ti.func(race_head)
+_seed_bound = ti.func(seed_bound)
 _logged_cells = ti.func(logged_cells)
-_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED, _HEAD = range(9)  # a race's ints
+(_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED, _HEAD,
+ _FROM, _BAND, _PASS, _KEPT) = range(13)  # a race's ints
+_FROM_SOURCE, _SEEDED = -1, -2  # a race's _FROM when it starts from the source, and once it started from the kept cells
 _LOG_STEPS = 120  # the steps of a search's log, up to 1.75 x 2**29 cells (``logged_cells``)
 
 
@@ -1592,7 +1622,9 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     that finishes first puts the buffer back (``clean``). A race is an int32 vector: the bucket it empties next, the
     cells listed, taken, the buckets emptied, its lead (the cells it may take per cell the mend has looked at or
     raised), the focus (padded coordinates; row -1: none), the steps of its log it has reached, its head start (the
-    cells it may take before its lead counts: ``race_head``). Unfocused, it logs in
+    cells it may take before its lead counts: ``race_head``), where it starts (``_FROM``: _FROM_SOURCE, a bound to
+    start from the cells below it once the mend has done ``_PASS`` work - ``seed_bound`` -, or _SEEDED once it
+    has), the band its seeds start at and the cells it kept (``seed``). Unfocused, it logs in
     row 1 of its links after the cells (``links[1, heads + k]``, unused by the buckets) the bucket it was about to
     empty when it had first taken ``logged_cells(k)`` cells (in the search's log -1 for steps not reached; a mend's
     race that wins hands its log on: ``hand_log``), so that a mend knows how many cells lie nearer the source than its
@@ -1605,21 +1637,23 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
 
     @ti.func
     def start(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), focus_row,
-              focus_col):
-        """A race from the source (none if blocked: it reaches nothing), ``values`` at the initial state, no lead.
-        A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``), and its log is
-        read only as far as it logs (``hand_log``); the search's buckets are cleared (a mend's raise queues cells
+              focus_col, below, band, passing):
+        """A race from the source (none if blocked: it reaches nothing), ``values`` at the initial state, no lead -
+        or, with ``below`` 0 or more, a race that waits to start from the cells a mend's edits left below that value
+        (``seed``, once the mend has looked at or raised ``passing`` cells: ``pace``), those from ``band`` on its
+        seeds. A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``), and its log
+        is read only as far as it logs (``hand_log``); the search's buckets are cleared (a mend's raise queues cells
         round the whole of their row 0) and its log too (a mend reads it whole: ``kept``)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         if ti.static(not logged):
             clear(links, heads)
             for k in range(_LOG_STEPS):
                 links[1, heads + k] = _UNLISTED
-        race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0, 0])
+        race = ti.Vector([0, 0, 0, 0, 0, focus_row, focus_col, 0, 0, below, band, passing, 0])
         i, j = header[SOURCE_ROW], header[SOURCE_COL]
         if ti.static(logged):
             links[2, heads] = 0
-        if not blocked(pen[0, i, j]):
+        if below < 0 and not blocked(pen[0, i, j]):
             if ti.static(logged):
                 log(links, heads, i * width + j)
             values[0, i, j] = 0.0
@@ -1634,13 +1668,13 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
         focus's value."""
         focus_row, focus_col = race[_FOCUS_ROW], race[_FOCUS_COL]
         past = focus_row >= 0 and race[_BUCKET] > values[0, focus_row, focus_col] + SEARCH_MARGIN
-        return race[_LISTED] == 0 or past
+        return (race[_LISTED] == 0 and race[_FROM] < 0) or past
 
     @ti.func
     def run(values: ti.template(), pen: ti.template(), links: ti.template(), race, most, cap):
         """Go on with ``race`` until it has taken ``most`` cells or finished; returns it."""
         race = log_steps(values, links, race)
-        while race[_TAKEN] < most and not over(values, race):
+        while race[_TAKEN] < most and race[_FROM] < 0 and not over(values, race):
             change = empty(values, pen, links, race[_BUCKET], race[_FOCUS_ROW], race[_FOCUS_COL], cap)
             race[_LISTED] += change[0]
             race[_TAKEN] += change[1]
@@ -1664,31 +1698,77 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     def search(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), cap,
                focus_row, focus_col):
         """Lower ``values`` (the initial state) from the source to the end (or the focus); returns the race."""
-        return run(values, pen, links, start(values, pen, header, links, focus_row, focus_col), _NEVER, cap)
+        return run(values, pen, links, start(values, pen, header, links, focus_row, focus_col, _FROM_SOURCE, 0, 0),
+                   _NEVER, cap)
 
     @ti.func
-    def pace(values: ti.template(), pen: ti.template(), links: ti.template(), race, work, cap):
+    def seed(layer: ti.template(), values: ti.template(), links: ti.template(), race, cap):
+        """Start a waiting ``race`` (``start``) from the cells below its bound in ``layer`` (a mend's values, which
+        its edits did not change there: ``_search_kernels``' mend), in one pass over the layer: ``values`` takes
+        theirs (the cap elsewhere), and those from its band on - the only ones a move can take past the bound - are
+        listed as its seeds; the cells below them count as taken and as its head start, less its lead times its
+        ``passing`` (the pass's price, paid). Dial's search from the seeds then gives every cell at or past the
+        bound the value a search from the source would (the cells below it keep theirs: a move adds at least 1)."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        mask = links.shape[1] - heads - 1
+        below, band = race[_FROM], race[_BAND]
+        taken, listed, first = 0, 0, below
+        for i in range(values.shape[1]):
+            for j in range(width):  # selects, not branches, but for the band's few cells: kept cells lie anywhere
+                value = layer[0, i, j]
+                kept = ti.select(value < below, 1, 0)
+                values[0, i, j] = ti.select(kept == 1, value, cap)
+                early = ti.select(value < band, 1, 0)
+                taken += early
+                if kept - early == 1:
+                    link(links, heads, i * width + j, ti.i32(value) & mask)
+                    listed += 1
+                    first = ti.min(first, ti.i32(value))
+        race[_BUCKET], race[_LISTED], race[_TAKEN], race[_KEPT], race[_FROM] = first, listed, taken, taken, _SEEDED
+        race[_HEAD] += taken - race[_LEAD] * race[_PASS]
+        return race
+
+    @ti.func
+    def pace(layer: ti.template(), values: ti.template(), pen: ti.template(), links: ti.template(), race, work, cap):
         """Go on with ``race`` up to its head start and its lead times the mend's ``work`` (cells looked at or
-        raised)."""
+        raised); a race waiting to start from the cells kept in ``layer`` starts (``seed``) once that work has paid
+        for its pass."""
+        if race[_FROM] >= 0 and race[_LEAD] > 0 and work >= race[_PASS]:
+            race = seed(layer, values, links, race, cap)
         return run(values, pen, links, race, race[_HEAD] + race[_LEAD] * work, cap)
 
     @ti.func
-    def clean(values: ti.template(), links: ti.template(), cap):
+    def finish(layer: ti.template(), values: ti.template(), pen: ti.template(), links: ti.template(), race, cap):
+        """Run ``race`` to its end (a waiting race started first: ``seed``)."""
+        if race[_FROM] >= 0:
+            race = seed(layer, values, links, race, cap)
+        return run(values, pen, links, race, _NEVER, cap)
+
+    @ti.func
+    def clean(values: ti.template(), links: ti.template(), race, cap):
         """Put ``values`` back at the initial state after a race that lost - the cells it lowered (its log) at the
-        cap, those still listed taken out of its buckets."""
+        cap, those still listed taken out of its buckets (a race that started from kept cells leaves them in
+        ``values``, and seeds in its buckets: ``_Layers._mend`` fills the values, and its buckets are emptied
+        here)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         for k in range(links[2, heads]):
             c = links[2, k]
             values[0, c // width, c % width] = cap
             if links[1, c] != _UNLISTED:
                 unlink(links, heads, c)
+        if race[_FROM] == _SEEDED:
+            for slot in range(links.shape[1] - heads):
+                while links[0, heads + slot] >= 0:
+                    unlink(links, heads, links[0, heads + slot])
 
     @ti.func
     def hand_log(links: ti.template(), race, into: ti.template(), heads):
         """Hand the log of ``race`` (in ``links``, its heads at ``heads``) on to ``into`` (the search's links), the
-        steps it did not reach as none (-1)."""
+        steps it did not reach as none (-1); a race that started from kept cells leaves the steps among them as the
+        search's log has them (it took them all at once, in the bucket it started at)."""
         for k in range(_LOG_STEPS):
-            into[1, heads + k] = ti.select(k < race[_LOGGED], links[1, heads + k], _UNLISTED)
+            if into[1, heads + k] < 0 or _logged_cells(k) > race[_KEPT]:
+                into[1, heads + k] = ti.select(k < race[_LOGGED], links[1, heads + k], _UNLISTED)
 
     @ti.func
     def kept(links: ti.template(), heads, nearest):
@@ -1700,8 +1780,8 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
                 most = _logged_cells(k)
         return most
 
-    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, clean=clean, hand_log=hand_log,
-                           kept=kept)
+    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, finish=finish, clean=clean,
+                           hand_log=hand_log, kept=kept)
 
 
 def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
@@ -1774,7 +1854,7 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
                 for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
                     if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
                         tail = push(values, links, cap, tail, i + m.dr, j + m.dc)  # reach of an edit)
-                race = pace(spare, pen, race_links, race, spent + raised, cap)
+                race = pace(values, spare, pen, race_links, race, spent + raised, cap)
             elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
                 links[1, c] = _DEFERRED
                 trail[1, waiting] = c
@@ -2060,6 +2140,19 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     racing = _race_rules(cell, logged=True)
     raising = _raise_rules(cell, racing)
+
+    @ti.func
+    def least_around(values: ti.template(), i, j, reach):
+        """The least of ``values`` within ``reach`` cells of padded cell (i, j) (rows and columns). A cell's route
+        reads a cell edited only through a move from a cell next to it (a step: the move's source, or its crossing's
+        neighbour) or, opened, one a move away (``reach`` PAD): every cell whose value an edit changes ends above the
+        least value there before it, a move adding at least 1 (a new obstacle or a dearer cell changes only the cells
+        whose routes went through it; a way opened lowers cells below their values only from there)."""
+        least = values[0, i, j]
+        for da, db in ti.ndrange((-reach, reach + 1), (-reach, reach + 1)):
+            least = ti.min(least, values[0, i + da, j + db])
+        return least
+
     raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(searching).lower_cut
     cut_off = _cut_rules(cell, racing).cut_off
 
@@ -2081,17 +2174,24 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             heads, nearest = values.shape[1] * values.shape[2], cap  # the edits' value nearest the source before them
+            below = cap  # ... and the least around one: no cell below it changes (``seed_bound``)
             for k in range(cells.shape[0]):  # the edits painted, in order (``paint``'s first pass)
                 i, j = cells[k, 0] + PAD, cells[k, 1] + PAD
                 nearest = ti.min(nearest, values[0, i, j])
+                below = ti.min(below, least_around(values, i, j, ti.select(penalties[k] < pen[0, i, j], PAD, 1)))
                 store_penalty(pen, 0, i, j, 0, penalties[k])
                 if penalties[k] > MAX_COST:
                     values[0, i, j] = cap
             budget, restart, fills = run[_MEND.budget], run[_MEND.restart], run[_MEND.fills]
             # cells below this value (less a move) did not route through the edits: the source keeps them
             kept = racing.kept(links, heads, ti.i32(ti.min(nearest, 1e9)) - run[_MEND.longest_move])
-            race = racing.start(spare, pen, header, race_links, run[_MEND.focus_row], run[_MEND.focus_col])
-            race[_LEAD] = _race_lead(kept + fills, 0, budget, run[_MEND.lead])
+            seed_wait, seed_pass = run[_MEND.seed_wait], run[_MEND.seed_pass]
+            bound = _seed_bound(below, racing.kept(links, heads, ti.i32(ti.min(below, _SEED_MOST))),
+                                seed_wait + seed_pass, run[_MEND.focus_row])
+            race = racing.start(spare, pen, header, race_links, run[_MEND.focus_row], run[_MEND.focus_col], bound,
+                                bound - run[_MEND.longest_move], seed_wait)
+            least = ti.select(bound < 0, kept, seed_pass) + fills  # the least a restart (the race) costs
+            race[_LEAD] = _race_lead(least, 0, budget, run[_MEND.lead])
             looked, race = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], race, spare,
                                    race_links)
             reached, spent, raised = looked[0], looked[1], 0
@@ -2099,23 +2199,24 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 budget = _budget_for(budget, restart, fills, reached)
                 race[_LEAD] = 0  # the edits cut nothing apart: the source keeps what it had, a restart costs as much
                 if looked[2] == 1 and reached < 0:
-                    race[_LEAD] = _race_lead(kept + fills, spent, budget, run[_MEND.lead])
-                    race[_HEAD] = ti.select(race[_LEAD] > 0, _race_head(kept, run[_MEND.head]), 0)
+                    race[_LEAD] = _race_lead(least, spent, budget, run[_MEND.lead])
+                    race[_HEAD] = ti.select(race[_LEAD] > 0 and bound < 0, _race_head(kept, run[_MEND.head]), 0)
                 raised, race = raise_cut(values, pen, header, links, trail, cells, cap, budget, spent, race, spare,
                                          race_links)
             spent += raised * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
             run[_MENDED.raced], run[_MENDED.head] = race[_TAKEN], race[_HEAD]
+            run[_MENDED.seeded] = ti.select(race[_FROM] == _SEEDED, 1, 0)
             run[_MENDED.gave_up] = ti.select(
                 spent > budget or _doomed(reached, restart, fills) or racing.over(spare, race), 1, 0)
             if run[_MENDED.gave_up]:  # the race runs to its end: the restart, its log the search's from now on
-                race = racing.run(spare, pen, race_links, race, _NEVER, cap)
+                race = racing.finish(values, spare, pen, race_links, race, cap)
                 racing.hand_log(race_links, race, links, heads)
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
                 run[_MENDED.buckets], run[_MENDED.frontier] = race[_EMPTIED], race[_LISTED]
                 run[_MENDED.lowered] = race[_TAKEN]
                 continue
-            racing.clean(spare, race_links, cap)
+            racing.clean(spare, race_links, race, cap)
             seeds = seed_cut(values, pen, header, trail, cells, penalties, raised, cap)
             found = lower_cut(values, pen, links, trail, seeds, run[_MEND.focus_row], run[_MEND.focus_col], cap)
             run[_MENDED.spent] += found[3]
@@ -2828,7 +2929,9 @@ class _Layers(_LayerArrays):
         looks = min(budget, int(CUT_SHARE * fills))
         restart_tick = _first_round(self.tick)  # a restart in the launch starts where a reset would
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
-                               self.longest_move, RACE_LEAD, int(RACE_HEAD_SHARE * restart), int(self.tiles_settled),
+                               self.longest_move, RACE_LEAD, int(RACE_HEAD_SHARE * restart),
+                               SEED_AFTER * (self.padded_cells // SEED_PASS), self.padded_cells // SEED_PASS,
+                               int(self.tiles_settled),
                                go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
@@ -2836,6 +2939,8 @@ class _Layers(_LayerArrays):
         outcome = _outcome(_MendResult, run)
         if outcome.gave_up:  # most of the layer cut off or changed: the launch searched from the source instead
             return self._restarted(outcome, restart_tick)
+        if outcome.seeded:  # the race that lost had copied the cells kept into the spare buffer
+            self.spare.fill(self.cap)
         if not outcome.frontier and self.searched is not None:
             self.searched = outcome.reached if outcome.reached >= 0 else max(self.searched, outcome.lowered)
         self._searched(bool(outcome.frontier), "mend")

@@ -375,9 +375,12 @@ def test_a_box_sealing_off_most_of_a_maze_is_mended_restarted_or_repaired_to_the
 
 
 @pytest.mark.parametrize("kind", ["maze", "random"])
-def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(kind):
+def test_a_pocket_sealed_and_opened_again_is_mended_cell_by_cell(monkeypatch, kind):
     """A small pocket of a maze or a random map (a ring round its farthest cell) sealed, then opened: both mended,
-    neither a search nor rounds of tiles, to a fresh converge's values."""
+    neither a search nor rounds of tiles, to a fresh converge's values. The race from the cells the edits keep is
+    held off (on the maze it would start once the mend had raised two passes' worth and finish just before it:
+    ``test_a_box_cutting_a_maze_is_restarted_from_the_cells_the_goal_keeps`` covers it)."""
+    monkeypatch.setattr(engine_module, "SEED_AFTER", 1 << 20)
     occupied = maze(129, 1, seed=1) if kind == "maze" else np.random.default_rng(3).random((100, 100)) < 0.2
     occupied[1, 1] = False
     engine = Engine(occupied, (1, 1))
@@ -948,3 +951,105 @@ def test_a_mend_that_gives_up_restarts_in_its_own_launch(monkeypatch, focused):
             engine.step(3)  # iterations: both buffers in use, the spare aside
         engine.converge()
         assert_equal_to_a_fresh_converge(engine, {})
+
+
+@given(st.floats(0, 3e7, allow_nan=False), st.integers(0, 10**7), st.integers(0, 10**7), st.sampled_from([-1, 5]),
+       st.integers(0, 10**6))
+def test_a_race_starts_from_the_kept_cells_only_where_they_outnumber_what_its_start_costs(below, kept, costs,
+                                                                                        focus_row, more):
+    """``seed_bound``: the floor of the least value around the edits, or none (-1) when focused, past 2**24 or with
+    no more cells kept below it than the race's wait and pass cost; never none for more cells kept."""
+    bound = engine_module.seed_bound(below, kept, costs, focus_row)
+    assert bound == (int(below) if focus_row < 0 and below < 2 ** 24 and kept > costs else -1)
+    assert bound < 0 or engine_module.seed_bound(below, kept + more, costs, focus_row) == bound
+
+
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(16, False), (8, True), (4, False)])
+def test_a_box_cutting_a_maze_is_restarted_from_the_cells_the_goal_keeps(monkeypatch, neighbourhood, corner_cutting):
+    """A box across a corridor of a perfect maze on the route from its farthest cell cuts off the part behind it and
+    keeps every value on the goal's side (below the least value round the box: no route there went through it). The
+    mend's race starts from those cells - one pass copies them, those within a move of the bound its seeds - and
+    empties only the few buckets from the seeds to the farthest value left, where a race from the source empties one
+    a cell of distance, and wins: the values are a fresh converge's, the spare buffer back at the cap."""
+    occupied = maze(257, 1, seed=5)
+    options = dict(neighbourhood=neighbourhood, corner_cutting=corner_cutting)
+    engine = Engine(occupied, (1, 1), **options)
+    engine.converge()
+    far = farthest(engine)
+    route = engine.trace(0, tuple(int(v) for v in far), occupied.size)
+    middle = route[len(route) // 2]
+    box = np.array([(middle[0] + i, middle[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    box = box[~occupied[box[:, 0], box[:, 1]]]
+    before = engine.goal_distances()
+    around = np.array([(r + i, c + j) for r, c in box for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    least = np.floor(before[around[:, 0], around[:, 1]].min())
+    runs = mend_runs(monkeypatch, engine)
+    engine.set_cells(box, np.ones(len(box), bool))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    after = engine.goal_distances()
+    assert outcome.seeded and outcome.gave_up and engine.converged_by() == "search"
+    assert outcome.lowered == np.isfinite(after).sum()
+    assert outcome.buckets <= np.max(after[np.isfinite(after)]) - least + 8  # from a move below the bound to the end
+    assert_equal_to_a_fresh_converge(engine, options)
+    assert_no_marks_left(engine)
+
+
+def test_a_race_from_the_kept_cells_that_loses_leaves_its_buffer_at_the_cap(monkeypatch):
+    """A box on a random map, its look cut short (sides apart) and its race started from the kept cells at once,
+    with no lead over the mend, which finishes first: the race's buckets are emptied, its buffer (the kept cells
+    copied into it) filled with the cap again, and the mend's values are a fresh converge's - the next edit's race
+    (a goal sealed in, which it wins) starts from a clean buffer."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
+    monkeypatch.setattr(engine_module, "SEED_AFTER", 0)
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
+    occupied = np.random.default_rng(21).random((200, 200)) < 0.2
+    goal = (100, 100)
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    far = farthest(engine)
+    route = engine.trace(0, tuple(int(v) for v in far), occupied.size)
+    middle = route[len(route) // 2]
+    box = np.array([(middle[0] + i, middle[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    box = box[~occupied[box[:, 0], box[:, 1]]]
+    engine.set_cells(box, np.ones(len(box), bool))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    assert outcome.seeded and not outcome.gave_up and engine.converged_by() == "mend"
+    assert_equal_to_a_fresh_converge(engine, {})
+    assert_no_marks_left(engine)
+    ring = ring_round(engine.occupied, goal, 6)
+    engine.set_cells(ring, np.ones(len(ring), bool))
+    engine.converge()
+    assert_equal_to_a_fresh_converge(engine, {})
+    assert_no_marks_left(engine)
+
+
+def test_a_race_from_the_kept_cells_keeps_none_that_a_wall_opened_in_the_same_edit_lowers(monkeypatch):
+    """A box cutting a maze far from the goal, and in the same edit a wall opened between two corridors nearer it,
+    whose far side the opening brings nearer: the race's bound comes from the values around each edit, the opened
+    wall's among them (its own is inf), so the cells the opening lowers lie past the bound and the race takes them
+    (bounded by the box alone, it copied their old values as kept)."""
+    occupied = maze(129, 1, seed=3)
+    engine = Engine(occupied, (1, 1))
+    engine.converge()
+    before = engine.goal_distances()
+    far = farthest(engine)
+    route = engine.trace(0, tuple(int(v) for v in far), occupied.size)
+    middle = route[len(route) // 2]
+    box = np.array([(middle[0] + i, middle[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    box = box[~occupied[box[:, 0], box[:, 1]]]
+    walls = [(r, c) for r, c in np.argwhere(occupied[1:-1, 1:-1]) + 1
+             for (a, b) in (((r - 1, c), (r + 1, c)), ((r, c - 1), (r, c + 1)))
+             if not occupied[a] and not occupied[b] and 20 < abs(before[a] - before[b])
+             and 0.6 * before[middle] < min(before[a], before[b]) and max(before[a], before[b]) < before[middle] - 20]
+    runs = mend_runs(monkeypatch, engine)
+    cells = np.concatenate([box, np.array(walls[:1])])
+    engine.set_cells(cells, np.arange(len(cells)) < len(box))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    assert outcome.seeded and outcome.gave_up
+    assert (engine.goal_distances() < before).any()  # the opening lowered some cells
+    assert_equal_to_a_fresh_converge(engine, {})
