@@ -370,6 +370,10 @@ _on_cpu = True
 def init_taichi() -> None:
     """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2).
 
+    Raises:
+        ValueError: ``TDP_ARCH`` names no Taichi arch, or one this machine lacks (Taichi would run on the CPU
+            instead), or ``TDP_THREADS`` is not a positive integer.
+
     Packed layers stay LLVM vectors (``real_matrix_scalarize=False``: Taichi's CPU optimiser otherwise targets
     generic x86-64, 4 floats wide). Taichi 1.7 splits a parallel loop on the CPU into one block per thread of at
     least 512 iterations (its ``make_cpu_multithreaded_range_for`` pass; ``block_dim`` and
@@ -390,8 +394,12 @@ def init_taichi() -> None:
         ti.init(arch=arch, cpu_max_num_threads=int(threads), default_fp=ti.f32, log_level=ti.WARN,
                 real_matrix_scalarize=False)
     logging.getLogger(__name__).debug(said.getvalue().strip())
+    started = ti.lang.impl.current_cfg().arch
+    if arch != ti.cpu and started == ti.cpu:  # Taichi falls back to the CPU with a warning on stderr alone
+        raise ValueError(f"TDP_ARCH={arch_name} asked for Taichi's {arch_name} backend, but Taichi found no such "
+                         f"device or driver and started on the CPU; unset TDP_ARCH (or set it to cpu) to run there")
     _initialised = True
-    _on_cpu = arch == ti.cpu
+    _on_cpu = started == ti.cpu
 
 
 #: Launch kernels through :class:`_Launcher`'s direct path (tests turn it off to compare the two paths).

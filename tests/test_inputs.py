@@ -258,3 +258,22 @@ def test_update_map_flags_are_true_false_or_one_bool_per_cell(planner, occupied)
         navigator.update_map([(1, 1), (2, 2), (3, 3)], occupied)
     navigator.update_map([(1, 1), (2, 2), (3, 3)], np.array([True, False, True]))
     navigator.update_map([(1, 1), (2, 2), (3, 3)], False)
+
+
+# -- the engine's environment -------------------------------------------------------------------------------------
+@pytest.mark.parametrize("arch, threads, says", [("cuda", "2", "TDP_ARCH=cuda asked for Taichi's cuda backend"),
+                                                 ("gpu_please", "2", "TDP_ARCH must name a Taichi arch"),
+                                                 ("cpu", "two", "TDP_THREADS must be a positive integer")])
+def test_a_backend_taichi_cannot_start_is_a_clear_error_not_a_silent_cpu(arch, threads, says):
+    """TDP_ARCH=cuda on a machine with no CUDA: Taichi falls back to the CPU with a warning on stderr, and the engine
+    then ran as if on a GPU (every wave a parallel launch). Now a ValueError says which backend was missing; so do
+    an arch Taichi does not know and a thread count that is no number. (On a machine with CUDA the first case
+    starts, and is skipped.)"""
+    import os
+
+    env = dict(os.environ, TDP_ARCH=arch, TDP_THREADS=threads)
+    done = subprocess.run([sys.executable, "-c", "from tdp.engine import init_taichi; init_taichi()"], cwd=ROOT,
+                          env=env, capture_output=True, text=True, timeout=300)
+    if arch == "cuda" and done.returncode == 0 and "falling back" not in done.stderr:
+        pytest.skip("this machine has CUDA: Taichi started on it")
+    assert done.returncode != 0 and f"ValueError: {says}" in done.stderr
