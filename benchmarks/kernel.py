@@ -36,8 +36,10 @@ def copy_bandwidth() -> float:
     return 2 * src.nbytes / seconds
 
 
-def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
-    from benchmarks.numpy_reference import NumpyDP
+def engine_times(size: int, count: int, repeats: int) -> tuple[dict, "object"]:
+    """The engine's side of a case: a ``size``² map with 10 % random obstacles, the goal and ``count`` lattice nodes;
+    one all-layer iteration with every tile relaxed (dense) and on the converged map (steady), medians in ms, and the
+    engine's inputs for a reference of the same update."""
     from tdp.engine import Engine
     from tdp.nodes import place_nodes
 
@@ -49,7 +51,6 @@ def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
     cap = 2.5 * lattice.spacing
     goal = tuple(np.argwhere(~occupied)[0])
     engine = Engine(occupied, goal, nodes=lattice.cells, node_cap=cap)
-    reference = NumpyDP(occupied, goal, lattice.cells, cap)
     side = 2 * int(np.ceil(cap)) + 1 if count else 0
     cell_layers = size * size + len(lattice.cells) * side * side
 
@@ -64,15 +65,23 @@ def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
 
     engine.step(5)
     taichi_s = median_time(dense_step, repeats, warmup=3)
-    numpy_s = median_time(reference.step, max(2, repeats // 4), warmup=1)
     engine.converge()
     steady_s = median_time(steady_step, repeats, warmup=3)
+    times = {"size": size, "nodes": len(lattice.cells), "window": side, "cell_layers": cell_layers,
+             "taichi_ms": taichi_s * 1e3, "steady_ms": steady_s * 1e3, "updates_per_s": cell_layers / taichi_s}
+    return times, (occupied, goal, lattice.cells, cap)
+
+
+def measure(size: int, count: int, repeats: int, bandwidth: float) -> dict:
+    from benchmarks.numpy_reference import NumpyDP
+
+    times, inputs = engine_times(size, count, repeats)
+    numpy_s = median_time(NumpyDP(*inputs).step, max(2, repeats // 4), warmup=1)
     floor_s = (GOAL_BYTES_PER_CELL_LAYER * size * size
-               + NODE_BYTES_PER_CELL_LAYER * (cell_layers - size * size)) / bandwidth
-    return {"size": size, "nodes": len(lattice.cells), "window": side, "cell_layers": cell_layers,
-            "taichi_ms": taichi_s * 1e3, "numpy_ms": numpy_s * 1e3, "floor_ms": floor_s * 1e3,
-            "steady_ms": steady_s * 1e3, "speedup_vs_numpy": numpy_s / taichi_s,
-            "updates_per_s": cell_layers / taichi_s, "ratio_to_floor": taichi_s / floor_s}
+               + NODE_BYTES_PER_CELL_LAYER * (times["cell_layers"] - size * size)) / bandwidth
+    taichi_s = times["taichi_ms"] / 1e3
+    return {**times, "numpy_ms": numpy_s * 1e3, "floor_ms": floor_s * 1e3, "speedup_vs_numpy": numpy_s / taichi_s,
+            "ratio_to_floor": taichi_s / floor_s}
 
 
 def worker(cases: list[tuple[int, int]], repeats: int) -> None:
