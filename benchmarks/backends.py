@@ -19,11 +19,12 @@ medians of repeats:
   setup and their median and 95th-percentile tick (its map update included).
 
 Every goal layer a worker converges is compared bit for bit with the first backend's (saved as .npy in a scratch
-folder): the result does not depend on the backend. A converge or repair whose projected time on a backend - its
-timed calls at the smaller map's time scaled by the cells - passes SERIAL_LIMIT_S is skipped there and said so: one
-GPU thread walks a search's buckets, and rounds of tiles are a launch each (a maze's rounds took 48 s a converge on
-an H200, where the projection from the random map said 2). Rows go to results/backends[-quick].jsonl as they come, so a killed run keeps what
-it measured; then results/backends[-quick].json and a figure of each case's time on each backend over the first's.
+folder): the result does not depend on the backend. A converge or repair whose projected time on a backend - its timed
+calls at the smaller map's time scaled by the cells - passes SERIAL_LIMIT_S is skipped there and said so: one GPU
+thread walks a search's buckets, and rounds of tiles are a launch each (a maze's rounds took 48 s a converge on an
+H200, where the projection from the random map said 2). Rows go to results/backends[-quick].jsonl as they come, so a
+killed run keeps what it measured; then results/backends[-quick].json and a figure of each case's time on each backend
+over the first's.
 """
 from __future__ import annotations
 

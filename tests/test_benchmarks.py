@@ -15,9 +15,9 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results"
 #: Each script and the key its JSON must fill, the longest runs first (sweep 35 s ... budget 10 s on the 2-core VM).
-SCRIPTS = {"sweep": "rows", "backends": "rows", "worlds": "summary", "costs": "rows", "predict": "summary", "convergence": "results",
-           "kernel": "results", "warehouse": "rows", "blockage": "rows", "paper": "rows", "budget": "rows",
-           "equal_time": "summary", "ab": "rows"}
+SCRIPTS = {"sweep": "rows", "backends": "rows", "worlds": "summary", "costs": "rows", "predict": "summary",
+           "convergence": "results", "kernel": "results", "warehouse": "rows", "blockage": "rows", "paper": "rows",
+           "budget": "rows", "equal_time": "summary", "ab": "rows"}
 
 
 def _smoke_run(script: str) -> subprocess.CompletedProcess:
