@@ -212,24 +212,30 @@ def run_backend(arch: str, args, scratch: Path, first: bool, journal: Path) -> l
                 out.write(json.dumps(row) + "\n")
             shown = row.get("skipped") or f"{row['ms']:.3f} ms" + ("" if row.get("same") in (None, True) else
                                                                     " - DIFFERS from the first backend")
-            print(f"  {row['backend']}: {row['case']}, {row['map']}, {row['kind']}: {shown}", flush=True)
+            print(f"  {row['backend']}: {', '.join(_case(row))}: {shown}", flush=True)
         error = process.stderr.read()
     if process.returncode:
         lines = error.strip().splitlines() or ["no message"]
         print(f"  {backend_name(arch)}: the worker stopped (exit code {process.returncode}):", flush=True)
         print("\n".join(f"    {line}" for line in lines[-15:]), flush=True)
-        last = lines[-1]
         rows.append({"backend": backend_name(arch), "case": "failed", "map": "", "kind": "",
-                     "error": f"exit code {process.returncode}: {last}"})
+                     "error": f"exit code {process.returncode}: {lines[-1]}"})
     return rows
+
+
+def _case(row: dict) -> tuple[str, str, str]:
+    """What a row measured: (case, map, kind)."""
+    return row["case"], row["map"], row["kind"]
 
 
 def summary_rows(rows: list[dict], backends: list[str]) -> list[list[str]]:
     """A table row per case: each backend's ms (or why not) and its ratio to the first backend's."""
-    cases = list(dict.fromkeys((r["case"], r["map"], r["kind"]) for r in rows if r["case"] != "failed"))
+    by_case = {}
+    for row in rows:
+        if row["case"] != "failed":
+            by_case.setdefault(_case(row), {})[row["backend"]] = row
     table = []
-    for case in cases:
-        by = {r["backend"]: r for r in rows if (r["case"], r["map"], r["kind"]) == case}
+    for case, by in by_case.items():
         first = by.get(backends[0], {}).get("ms")
         cells = [*case]
         for backend in backends:
@@ -248,14 +254,14 @@ def figure(rows: list[dict], backends: list[str], path: Path) -> None:
     from tdp.plot import pyplot, save_figure
 
     plt = pyplot()
-    cases = list(dict.fromkeys((r["case"], r["map"], r["kind"]) for r in rows if "ms" in r))
-    first = {(r["case"], r["map"], r["kind"]): r["ms"] for r in rows if r["backend"] == backends[0] and "ms" in r}
-    cases = [c for c in cases if c in first]
+    times = {backend: {_case(r): r["ms"] for r in rows if r["backend"] == backend and "ms" in r}
+             for backend in backends}
+    first = times[backends[0]]
+    cases = list(first)
     fig, ax = plt.subplots(figsize=(max(8, 0.45 * len(cases)), 5))
     width = 0.8 / max(len(backends) - 1, 1)
     for k, backend in enumerate(backends[1:]):
-        times = {(r["case"], r["map"], r["kind"]): r["ms"] for r in rows if r["backend"] == backend and "ms" in r}
-        ratios = [times[c] / first[c] if c in times else np.nan for c in cases]
+        ratios = [times[backend][c] / first[c] if c in times[backend] else np.nan for c in cases]
         ax.bar(np.arange(len(cases)) + k * width, ratios, width, label=backend)
     ax.axhline(1.0, color="black", linewidth=0.8)
     ax.set_xticks(np.arange(len(cases)) + 0.4 - width / 2, [" / ".join(c) for c in cases], rotation=75, fontsize=6)

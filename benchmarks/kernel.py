@@ -36,7 +36,7 @@ def copy_bandwidth() -> float:
     return 2 * src.nbytes / seconds
 
 
-def engine_times(size: int, count: int, repeats: int) -> tuple[dict, "object"]:
+def engine_times(size: int, count: int, repeats: int) -> tuple[dict, tuple]:
     """The engine's side of a case: a ``size``² map with 10 % random obstacles, the goal and ``count`` lattice nodes;
     one all-layer iteration with every tile relaxed (dense) and on the converged map (steady), medians in ms, and the
     engine's inputs for a reference of the same update."""

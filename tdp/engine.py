@@ -2936,11 +2936,10 @@ class _Layers(_LayerArrays):
             self.race_links.fill(_UNLISTED)
         looks = min(budget, int(CUT_SHARE * fills))
         restart_tick = _first_round(self.tick)  # a restart in the launch starts where a reset would
+        seed_pass = self.padded_cells // SEED_PASS  # a race from the kept cells: its pass, in cells a search takes
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
-                               self.longest_move, RACE_LEAD, int(RACE_HEAD_SHARE * restart),
-                               SEED_AFTER * (self.padded_cells // SEED_PASS), self.padded_cells // SEED_PASS,
-                               int(self.tiles_settled),
-                               go=1), _MendResult)
+                               self.longest_move, RACE_LEAD, int(RACE_HEAD_SHARE * restart), SEED_AFTER * seed_pass,
+                               seed_pass, int(self.tiles_settled), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
                           spare=self.spare, race_links=self.race_links, run=run)

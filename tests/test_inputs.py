@@ -1,6 +1,7 @@
 """Bad and unusual input: each case here was silently wrong, a traceback or a hang before, and is now a clear
 ValueError naming what was wrong, or the right answer."""
 import json
+import os
 import struct
 import subprocess
 import sys
@@ -269,8 +270,6 @@ def test_a_backend_taichi_cannot_start_is_a_clear_error_not_a_silent_cpu(arch, t
     then ran as if on a GPU (every wave a parallel launch). Now a ValueError says which backend was missing; so do
     an arch Taichi does not know and a thread count that is no number. (On a machine with CUDA the first case
     starts, and is skipped.)"""
-    import os
-
     env = dict(os.environ, TDP_ARCH=arch, TDP_THREADS=threads)
     done = subprocess.run([sys.executable, "-c", "from tdp.engine import init_taichi; init_taichi()"], cwd=ROOT,
                           env=env, capture_output=True, text=True, timeout=300)
