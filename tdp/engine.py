@@ -175,6 +175,15 @@ CUT_PARTS = 4096
 CUT_SHARE = 0.5
 _HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
+#: A look's ints (``_cut_rules``): cells looked at, queued, parts live, whether crowded, whether the source is blocked,
+#: the part holding the source closed (-1: none), whether parts are apart, the cells looked at at the next check of
+#: the clusters' sides, the clusters.
+_LOOKED, _QUEUED, _LIVE, _CROWDED, _LOST, _SEALED, _CUT, _CHECK_AT, _CLUSTERS = range(9)
+#: A raise's ints (``_raise_rules``): its queue's next entry and end, the cells raised, the cells waiting to be looked
+#: at again, the cells raised since they were last looked at.
+_NEXT, _END, _RAISED, _DEFERRING, _ROSE = range(5)
+#: A mend's phases: its look, its raise, done (the race beside them).
+_LOOKING, _RAISING, _MENDED_ALL = range(3)
 #: A blocked edit's mark in row 2 of ``cut_off``'s trail when it checks its clusters (a part's is the part + 1):
 #: a cluster's root holds -(_ROOT + its side + 1), any other blocked cell -(its parent + 2) - so layers of _ROOT - 2
 #: padded cells or more (23,000 cells a side) are not checked.
@@ -1291,15 +1300,15 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                            log=log)
 
 
-def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
-    """A mend's first look at its edits (``_Layers._mend``): ``cut_off`` tells whether the cells they blocked cut the
-    free cells apart, and caps the parts the source no longer reaches. It steps by the moves that cross no cell
-    (``_cell_rules``' ``steps``: they join the same cells as the whole stencil). Row 2 of a mend's ``trail`` marks
-    the cells looked at (their part + 1), row 1 queues them (and logs them: nothing is taken off), row 0 holds each
-    part's ints (``_PART_INTS``: union-find parent, cells waiting, flags). A mend's race (``racing``:
-    ``_race_rules``) keeps its lead on it."""
+def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
+    """A mend's first look at its edits (``_Layers._mend``), its ``cut_off``: ``cut_start``, then ``cut_step`` while
+    ``cutting``, then ``cut_verdict`` tell whether the cells they blocked cut the free cells apart, and cap the parts
+    the source no longer reaches - a cell at a time, so that the mend can keep its race going beside the look. It
+    steps by the moves that cross no cell (``_cell_rules``' ``steps``: they join the same cells as the whole
+    stencil). Row 2 of a mend's ``trail`` marks the cells looked at (their part + 1), row 1 queues them (and logs
+    them: nothing is taken off), row 0 holds each part's ints (``_PART_INTS``: union-find parent, cells waiting,
+    flags); the look's own ints are a vector (``_LOOKED`` ...)."""
     blocked, steps = cell.blocked, cell.steps
-    pace, over = racing.pace, racing.over
 
     @ti.func
     def at(part, field):
@@ -1477,22 +1486,11 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
         return ok
 
     @ti.func
-    def cut_off(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
-                cells: ti.template(), penalties: ti.template(), cap, budget, race, spare: ti.template(),
-                race_links: ti.template()):
-        """Breadth-first from every free cell beside a cell the edits blocked, each a part of its own, in one queue:
-        parts that meet merge, and a part whose queue runs dry is cut off from every other - the whole of what it joins.
-        It stops once one part is left (every other merged into it or closed), or once the sides of each cluster of
-        blocked cells are one part (``joined``: clusters far apart, as boxes or noise all over a map, leave a part round
-        each that would merge with the others only after most of the map), the source's part ran dry, it has looked at
-        ``budget`` cells, the ``race`` (its lead times the cells looked at, in ``spare``) has finished, or the blocked
-        cells have more than CUT_PARTS free cells beside them. If the edits left the source's part closed, the cells in
-        it are what a restart searches (none if they blocked the source); else the parts closed without the source -
-        pockets sealed off - have their cells set to the cap at once (no raise). If every part merged into one, the
-        edits cut nothing: a way round each blocked cell joins its neighbours, so a route through it has a way round
-        too. Returns (the cells the source's closed part holds, -1 if none; cells looked at; 1 if it stopped short with
-        parts apart - the source may lie in one closed - else 0) and the race. The verdict only chooses how the mend
-        goes on (a race or none): the raise that follows finds every cell that must rise either way."""
+    def cut_start(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
+                  cells: ti.template(), penalties: ti.template(), cap):
+        """The look's start: each free cell beside a cell the edits blocked queued as a part of its own (at most
+        CUT_PARTS: more leave the look crowded) and the clusters of blocked cells counted (``clustered``). Returns
+        the look's ints."""
         width = values.shape[2]
         most = ti.min(CUT_PARTS, trail.shape[1] // _PART_INTS)
         source = header[SOURCE_ROW] * width + header[SOURCE_COL]
@@ -1514,49 +1512,84 @@ def _cut_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespac
                         crowded |= live == most
         # parts apart may yet be the ways round clusters of blocked cells far apart, each joined round (``joined``):
         # checked once there are no more parts than clusters, each time the cells looked at have doubled
-        head, sealed, cut, check_at = 0, -1, live > 1, clusters
-        while not (crowded or lost or over(spare, race)) and cut and head < tail and head < budget and sealed < 0:
-            c = trail[1, head]
-            head += 1
-            race = pace(values, spare, pen, race_links, race, head, cap)
-            part = root(trail, part_of(trail, c))
-            i, j = c // width, c % width
-            for m in ti.static(steps):
-                if not blocked(pen[0, i + m.dr, j + m.dc]):
-                    there = c + m.dr * width + m.dc
-                    marked = part_of(trail, there)
-                    if marked < 0:
-                        tail = visit(trail, part, there, tail, source)
-                    elif marked != part:
-                        other = root(trail, marked)
-                        if other != part:  # two parts meet: one from here on
-                            merge(trail, part, other)
-                            live -= 1
-            trail[0, at(part, _WAITING)] -= 1
-            if trail[0, at(part, _WAITING)] == 0:  # all it joins looked at: closed
-                trail[0, at(part, _FLAGS)] |= _CLOSED
-                live -= 1
-                if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
-                    sealed = part
-            cut = live > 1
-            if cut and live <= clusters and head >= check_at and sealed < 0:
-                cut = not joined(trail, pen, cells, penalties, width)
-                check_at = 2 * head
-        if cut and not (crowded or lost) and sealed < 0 and live <= clusters:  # stopped short: as it stands
+        return ti.Vector([0, tail, live, ti.select(crowded, 1, 0), ti.select(lost, 1, 0), -1,
+                          ti.select(live > 1, 1, 0), clusters, clusters])
+
+    @ti.func
+    def cutting(look, budget):
+        """Whether the look goes on: not crowded, the source not blocked, parts apart, none holding the source
+        closed, cells queued, fewer than ``budget`` looked at (the mend stops it too once its race has finished)."""
+        return (look[_CROWDED] == 0 and look[_LOST] == 0 and look[_CUT] == 1 and look[_SEALED] < 0
+                and look[_LOOKED] < look[_QUEUED] and look[_LOOKED] < budget)
+
+    @ti.func
+    def cut_step(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
+                 cells: ti.template(), penalties: ti.template(), look):
+        """The look's next cell, breadth-first from every free cell beside a cell the edits blocked, each a part of
+        its own, in one queue: its free neighbours join its part, parts that meet merge, and a part whose queue runs
+        dry is cut off from every other - the whole of what it joins (a part holding the source so: ``_SEALED``).
+        The look stops (``cutting``) once one part is left (every other merged into it or closed), or once the
+        sides of each cluster of blocked cells are one part (``joined``: clusters far apart, as boxes or noise all
+        over a map, leave a part round each that would merge with the others only after most of the map). Returns
+        the look's ints."""
+        width = values.shape[2]
+        source = header[SOURCE_ROW] * width + header[SOURCE_COL]
+        c = trail[1, look[_LOOKED]]
+        look[_LOOKED] += 1
+        part = root(trail, part_of(trail, c))
+        i, j = c // width, c % width
+        tail, live = look[_QUEUED], look[_LIVE]
+        for m in ti.static(steps):
+            if not blocked(pen[0, i + m.dr, j + m.dc]):
+                there = c + m.dr * width + m.dc
+                marked = part_of(trail, there)
+                if marked < 0:
+                    tail = visit(trail, part, there, tail, source)
+                elif marked != part:
+                    other = root(trail, marked)
+                    if other != part:  # two parts meet: one from here on
+                        merge(trail, part, other)
+                        live -= 1
+        trail[0, at(part, _WAITING)] -= 1
+        if trail[0, at(part, _WAITING)] == 0:  # all it joins looked at: closed
+            trail[0, at(part, _FLAGS)] |= _CLOSED
+            live -= 1
+            if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
+                look[_SEALED] = part
+        cut = live > 1
+        if cut and live <= look[_CLUSTERS] and look[_LOOKED] >= look[_CHECK_AT] and look[_SEALED] < 0:
             cut = not joined(trail, pen, cells, penalties, width)
+            look[_CHECK_AT] = 2 * look[_LOOKED]
+        look[_QUEUED], look[_LIVE], look[_CUT] = tail, live, ti.select(cut, 1, 0)
+        return look
+
+    @ti.func
+    def cut_verdict(values: ti.template(), pen: ti.template(), trail: ti.template(), cells: ti.template(),
+                    penalties: ti.template(), cap, look):
+        """The look's end: if the edits left the source's part closed, the cells in it are what a restart searches
+        (none if they blocked the source); else the parts closed without the source - pockets sealed off - have
+        their cells set to the cap at once (no raise). If every part merged into one, the edits cut nothing: a way
+        round each blocked cell joins its neighbours, so a route through it has a way round too. The trail's marks
+        are cleared. Returns (the cells the source's closed part holds, -1 if none; cells looked at; 1 if it stopped
+        short with parts apart - the source may lie in one closed - else 0). The verdict only chooses how the mend
+        goes on (a race or none): the raise that follows finds every cell that must rise either way."""
+        width = values.shape[2]
+        cut = look[_CUT] == 1
+        if cut and look[_CROWDED] == 0 and look[_LOST] == 0 and look[_SEALED] < 0 and look[_LIVE] <= look[_CLUSTERS]:
+            cut = not joined(trail, pen, cells, penalties, width)  # stopped short: as it stands
         mark_edits(trail, pen, cells, penalties, width, 0)
-        reached = ti.select(sealed >= 0 or lost, 0, -1)
-        for k in range(tail):
+        reached = ti.select(look[_SEALED] >= 0 or look[_LOST] == 1, 0, -1)
+        for k in range(look[_QUEUED]):
             c = trail[1, k]
             flags = trail[0, at(root(trail, part_of(trail, c)), _FLAGS)]
             trail[2, c] = 0
-            if sealed >= 0:
+            if look[_SEALED] >= 0:
                 reached += flags & _HOLDS_SOURCE
             elif flags & _CLOSED:
                 values[0, c // width, c % width] = cap
-        return ti.Vector([reached, head, ti.select(crowded or cut, 1, 0)]), race
+        return ti.Vector([reached, look[_LOOKED], ti.select(look[_CROWDED] == 1 or cut, 1, 0)])
 
-    return SimpleNamespace(cut_off=cut_off)
+    return SimpleNamespace(cut_start=cut_start, cutting=cutting, cut_step=cut_step, cut_verdict=cut_verdict)
 
 
 @ti.func
@@ -1737,20 +1770,21 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
         return race
 
     @ti.func
-    def pace(layer: ti.template(), values: ti.template(), pen: ti.template(), links: ti.template(), race, work, cap):
-        """Go on with ``race`` up to its head start and its lead times the mend's ``work`` (cells looked at or
-        raised); a race waiting to start from the cells kept in ``layer`` starts (``seed``) once that work has paid
-        for its pass."""
-        if race[_FROM] >= 0 and race[_LEAD] > 0 and work >= race[_PASS]:
+    def advance(layer: ti.template(), values: ti.template(), pen: ti.template(), links: ti.template(), race, most,
+                seeding, cap):
+        """Go on with ``race`` until it has taken ``most`` cells or finished, a race waiting to start from the cells
+        kept in ``layer`` started first (``seed``) if ``seeding``; ``most`` _NEVER and ``seeding`` run it to its
+        end. Each place that calls it inlines a whole search: the mend calls it in one place."""
+        if race[_FROM] >= 0 and seeding:
             race = seed(layer, values, links, race, cap)
-        return run(values, pen, links, race, race[_HEAD] + race[_LEAD] * work, cap)
+        return run(values, pen, links, race, most, cap)
 
     @ti.func
-    def finish(layer: ti.template(), values: ti.template(), pen: ti.template(), links: ti.template(), race, cap):
-        """Run ``race`` to its end (a waiting race started first: ``seed``)."""
-        if race[_FROM] >= 0:
-            race = seed(layer, values, links, race, cap)
-        return run(values, pen, links, race, _NEVER, cap)
+    def paced(race, work):
+        """How far ``race`` may go once the mend has done ``work`` (cells looked at or raised): its head start and
+        its lead times that work, and whether a race waiting to start from the kept cells starts (the work has paid
+        for its pass)."""
+        return race[_HEAD] + race[_LEAD] * work, race[_LEAD] > 0 and work >= race[_PASS]
 
     @ti.func
     def clean(values: ti.template(), links: ti.template(), race, cap):
@@ -1788,16 +1822,17 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
                 most = _logged_cells(k)
         return most
 
-    return SimpleNamespace(start=start, over=over, run=run, search=search, pace=pace, finish=finish, clean=clean,
+    return SimpleNamespace(start=start, over=over, run=run, search=search, advance=advance, paced=paced, clean=clean,
                            hand_log=hand_log, kept=kept)
 
 
-def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamespace:
+def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """The first half of a mend (``_Layers._mend``), the repair after edits of a layer at its fixed point before
-    them, cell by cell: ``raise_cut`` (the cells the edits cut off rise to the cap) and ``seed_cut`` (their rim and
-    the edited cells take their relaxations, the seeds of :func:`_lower_rules`' search)."""
+    them, cell by cell: the raise, ``raise_start``, then ``raise_step`` while its queue holds cells, then
+    ``raise_end`` (the cells the edits cut off rise to the cap; its ints are a vector, ``_NEXT`` ...) and
+    ``seed_cut`` (their rim and the edited cells take their relaxations, the seeds of :func:`_lower_rules`'
+    search)."""
     moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
-    pace, over = racing.pace, racing.over
 
     @ti.func
     def after(links: ti.template(), index):
@@ -1816,69 +1851,75 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
         return tail
 
     @ti.func
-    def raise_cut(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                  trail: ti.template(), cells: ti.template(), cap, budget, spent, race, spare: ti.template(),
-                  race_links: ti.template()):
-        """The raise of a repair after edits of ``cells`` (grid coordinates) on a layer at its fixed point before
-        them: every cell below its relaxation - its route went through a cell now blocked or dearer, or through a
-        cell raised here - jumps to the cap (D* Lite's underconsistent states), the cells within reach of an edit
-        checked first and a raised cell's neighbours after it. Cell by cell from a queue (first in, first out - row
-        0 of ``links`` as a ring): a sealed pocket rises at memory speed, with no wave to wait for; the next cell is
-        known long before its turn, so the processor loads it while the last one is checked, where a stack's next
-        was mostly the cell just pushed (``benchmarks.ab``: boxes 0.95x and walls 0.90x a stack's, geometric means
-        over nine maps - random and ROS maps 0.80-0.99x, mazes 0.99-1.04x -, the goal sealed in a room 1.02x). The
-        order does not matter for the result: a cell looked at before its last route rose is a dependant of the cell
-        that rises, and is looked at again. Only a raised cell's dependants - neighbours whose value is its old one
-        plus their move to it - are looked at again. A cell that relaxes below its value (a cell freed or made
-        cheaper by the same edits opened a move to it) may do so through a neighbour not raised yet, of which it is
-        no dependant: it waits in row 1 of ``trail`` and is looked at again once the queue has run dry, as long as
-        cells rose since it was last looked at (before, such a cell was kept, and one whose route went through a
-        cell now blocked kept the value that route gave, below every route it has). Every cell left
-        below the cap then has a real route (a neighbour at least a move lower, down to the source), or relaxes
-        below its value through one that has (the seeds lower it). The raised cells go in row 0 of ``trail``.
+    def raise_start(values: ti.template(), links: ti.template(), cells: ti.template(), cap, raising):
+        """The raise's queue: the cells within reach of each edit of ``cells`` (grid coordinates), if ``raising``.
+        Returns the raise's ints."""
+        tail = 0
+        if raising:
+            for k in range(cells.shape[0]):
+                for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
+                    tail = push(values, links, cap, tail, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
+        return ti.Vector([0, tail, 0, 0, 0])
 
-        It stops once the mend's work (``spent`` before it, and RAISE_COST a raised cell) passes ``budget`` (cells a
-        search takes: the share of a restart's price the mend may spend), or the ``race`` (in ``spare``:
-        ``_race_rules``), its head start and its lead times the cells looked at (``spent``) and raised ahead of
-        them, has finished.
-        Returns the cells raised and the race."""
-        head, tail, raised = 0, 0, 0
-        waiting, rose = 0, 0  # the cells waiting: row 1 of the trail
-        for k in range(cells.shape[0]):
-            for da, db in ti.ndrange((-PAD, PAD + 1), (-PAD, PAD + 1)):
-                tail = push(values, links, cap, tail, cells[k, 0] + PAD + da, cells[k, 1] + PAD + db)
-        while head != tail and spent + raised * RAISE_COST <= budget and not over(spare, race):
-            c = links[0, head]
-            head = after(links, head)
-            links[1, c] = _UNLISTED
-            i, j = c // values.shape[2], c % values.shape[2]
-            value = values[0, i, j]
-            relaxed, leans = leaning(values, pen, header, cap, i, j)
-            if value < cap and relaxed > value:
-                values[0, i, j] = cap
-                trail[0, raised] = c
-                raised += 1
-                rose += 1
-                for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this
-                    if leans & (1 << k):  # cell's (their route; a move whose crossing is now blocked starts within
-                        tail = push(values, links, cap, tail, i + m.dr, j + m.dc)  # reach of an edit)
-                race = pace(values, spare, pen, race_links, race, spent + raised, cap)
-            elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
-                links[1, c] = _DEFERRED
-                trail[1, waiting] = c
-                waiting += 1
-            if head == tail and rose > 0:  # cells rose since the waiting ones were looked at: again
-                for k in range(waiting):
-                    c = trail[1, k]
-                    links[1, c] = _UNLISTED
-                    tail = push(values, links, cap, tail, c // values.shape[2], c % values.shape[2])
-                waiting, rose = 0, 0
-        for k in range(waiting):  # kept: every cell their relaxation goes through stayed
+    @ti.func
+    def raise_step(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
+                   trail: ti.template(), cap, rising):
+        """The raise's next cell (its queue not empty), after edits on a layer at its fixed point before them: a
+        cell below its relaxation - its route went through a cell now blocked or dearer, or through a cell raised
+        here - jumps to the cap (D* Lite's underconsistent states), its dependants queued after it. The queue is
+        first in, first out (row 0 of ``links`` as a ring): a sealed pocket rises at memory speed, with no wave to
+        wait for; the next cell is known long before its turn, so the processor loads it while the last one is
+        checked, where a stack's next was mostly the cell just pushed (``benchmarks.ab``: boxes 0.95x and walls
+        0.90x a stack's, geometric means over nine maps - random and ROS maps 0.80-0.99x, mazes 0.99-1.04x -, the
+        goal sealed in a room 1.02x). The order does not matter for the result: a cell looked at before its last
+        route rose is a dependant of the cell that rises, and is looked at again. Only a raised cell's dependants -
+        neighbours whose value is its old one plus their move to it - are looked at again. A cell that relaxes
+        below its value (a cell freed or made cheaper by the same edits opened a move to it) may do so through a
+        neighbour not raised yet, of which it is no dependant: it waits in row 1 of ``trail`` and is looked at again
+        once the queue has run dry, as long as cells rose since it was last looked at (before, such a cell was kept,
+        and one whose route went through a cell now blocked kept the value that route gave, below every route it
+        has). Every cell left below the cap then has a real route (a neighbour at least a move lower, down to the
+        source), or relaxes below its value through one that has (the seeds lower it). The raised cells go in row 0
+        of ``trail``. Returns the raise's ints and whether the cell rose."""
+        head, tail, raised, waiting, rose = (rising[_NEXT], rising[_END], rising[_RAISED], rising[_DEFERRING],
+                                             rising[_ROSE])
+        c = links[0, head]
+        head = after(links, head)
+        links[1, c] = _UNLISTED
+        i, j = c // values.shape[2], c % values.shape[2]
+        value = values[0, i, j]
+        relaxed, leans = leaning(values, pen, header, cap, i, j)
+        went_up = value < cap and relaxed > value
+        if went_up:
+            values[0, i, j] = cap
+            trail[0, raised] = c
+            raised += 1
+            rose += 1
+            for k, m in ti.static(tuple(enumerate(moves))):  # the neighbours whose value came through this cell's
+                if leans & (1 << k):  # (their route; a move whose crossing is now blocked starts within reach of an
+                    tail = push(values, links, cap, tail, i + m.dr, j + m.dc)  # edit)
+        elif relaxed < value:  # through a neighbour that may rise yet: looked at again later
+            links[1, c] = _DEFERRED
+            trail[1, waiting] = c
+            waiting += 1
+        if head == tail and rose > 0:  # cells rose since the waiting ones were looked at: again
+            for k in range(waiting):
+                c = trail[1, k]
+                links[1, c] = _UNLISTED
+                tail = push(values, links, cap, tail, c // values.shape[2], c % values.shape[2])
+            waiting, rose = 0, 0
+        return ti.Vector([head, tail, raised, waiting, rose]), went_up
+
+    @ti.func
+    def raise_end(links: ti.template(), trail: ti.template(), rising):
+        """The raise's end, its queue run dry or its mend over budget: the cells waiting are kept (every cell their
+        relaxation goes through stayed), and the queue is emptied (for the restart)."""
+        for k in range(rising[_DEFERRING]):
             links[1, trail[1, k]] = _UNLISTED
-        while head != tail:  # over budget: the queue emptied, for the restart
+        head = rising[_NEXT]
+        while head != rising[_END]:
             links[1, links[0, head]] = _UNLISTED
             head = after(links, head)
-        return raised, race
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -1909,7 +1950,7 @@ def _raise_rules(cell: SimpleNamespace, racing: SimpleNamespace) -> SimpleNamesp
                     seeds += 1
         return seeds
 
-    return SimpleNamespace(raise_cut=raise_cut, seed_cut=seed_cut)
+    return SimpleNamespace(raise_start=raise_start, raise_step=raise_step, raise_end=raise_end, seed_cut=seed_cut)
 
 
 def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
@@ -2147,7 +2188,10 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_SEARCHED.taken] = found[_TAKEN]
 
     racing = _race_rules(cell, logged=True)
-    raising = _raise_rules(cell, racing)
+    look_rules, raise_rules = _cut_rules(cell), _raise_rules(cell)
+    cut_start, cutting, cut_step, cut_verdict = (look_rules.cut_start, look_rules.cutting, look_rules.cut_step,
+                                                 look_rules.cut_verdict)
+    raise_start, raise_step, raise_end = raise_rules.raise_start, raise_rules.raise_step, raise_rules.raise_end
 
     @ti.func
     def least_around(values: ti.template(), i, j, reach):
@@ -2161,24 +2205,24 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             least = ti.min(least, values[0, i + da, j + db])
         return least
 
-    raise_cut, seed_cut, lower_cut = raising.raise_cut, raising.seed_cut, _lower_rules(searching).lower_cut
-    cut_off = _cut_rules(cell, racing).cut_off
+    seed_cut, lower_cut = raise_rules.seed_cut, _lower_rules(searching).lower_cut
 
     @kernel
     def mend(values: t.values, pen: t.penalties, stamps: t.stamps, keys: t.keys, header: t.ints, links: t.queue,
              trail: t.queue, cells: t.cells, penalties: t.costs, cap: ti.f32, spare: t.values, race_links: t.queue,
              run: t.ints):
         """converge() after edits of ``cells`` on a layer that was at its fixed point, cell by cell on the calling
-        thread (``_cut_rules``' ``cut_off``, ``_raise_rules``' ``raise_cut`` and ``seed_cut``, ``_lower_rules``'
+        thread (the look of ``_cut_rules``, the raise and ``seed_cut`` of ``_raise_rules``, ``_lower_rules``'
         ``lower_cut``; ``run``: a _MendRun), the tiles then handed over to settling for round ``tick``; its results
         (a _MendResult) go in ``run``. The edits' ``penalties`` are painted first (``_LayerArrays.paint`` holds them
-        back for it). ``trail``: (_TRAIL_ROWS, padded cells), its rows ``cut_off``'s and ``raise_cut``'s, all 0 in
-        row 2. A search from the source races the look and, where the look found the edits' sides apart, the raise
+        back for it). ``trail``: (_TRAIL_ROWS, padded cells), its rows the look's and the raise's, all 0 in row 2. A
+        search from the source races the look and, where the look found the edits' sides apart, the raise
         (``_race_rules``, ``race_lead``) in ``spare``, a buffer at the initial state (the cap everywhere), with
-        ``race_links`` (3 rows). If it finishes first, or the mend's work passes its budget, or the look finds the
-        goal sealed in so few cells that a restart costs less (``restart_is_cheaper``), the mend gives up and the
-        race runs to its end - the restart, in the same launch, its tiles handed over for round ``restart_tick``;
-        else the race's cells are put back at the cap."""
+        ``race_links`` (3 rows): the look and the raise go a cell at a time in one loop, the race on after each
+        (``advance``, in one place: each place inlines a search). If it finishes first, or the mend's work passes
+        its budget, or the look finds the goal sealed in so few cells that a restart costs less
+        (``restart_is_cheaper``), the mend gives up and the race runs to its end - the restart, in the same launch,
+        its tiles handed over for round ``restart_tick``; else the race's cells are put back at the cap."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
             heads, nearest = values.shape[1] * values.shape[2], cap  # the edits' value nearest the source before them
@@ -2200,25 +2244,45 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                                 bound - run[_MEND.longest_move], seed_wait)
             least = ti.select(bound < 0, kept, seed_pass) + fills  # the least a restart (the race) costs
             race[_LEAD] = _race_lead(least, 0, budget, run[_MEND.lead])
-            looked, race = cut_off(values, pen, header, trail, cells, penalties, cap, run[_MEND.looks], race, spare,
-                                   race_links)
-            reached, spent, raised = looked[0], looked[1], 0
-            if not (_doomed(reached, restart, fills) or racing.over(spare, race)):
-                budget = _budget_for(budget, restart, fills, reached)
-                race[_LEAD] = 0  # the edits cut nothing apart: the source keeps what it had, a restart costs as much
-                if looked[2] == 1 and reached < 0:
-                    race[_LEAD] = _race_lead(least, spent, budget, run[_MEND.lead])
-                    race[_HEAD] = ti.select(race[_LEAD] > 0 and bound < 0, _race_head(kept, run[_MEND.head]), 0)
-                raised, race = raise_cut(values, pen, header, links, trail, cells, cap, budget, spent, race, spare,
-                                         race_links)
-            spent += raised * RAISE_COST
+            look = cut_start(values, pen, header, trail, cells, penalties, cap)
+            looked, rising, left = ti.Vector([0, 0, 0]), ti.Vector([0, 0, 0, 0, 0]), race
+            phase, raising, gave_up = _LOOKING, False, 0
+            while phase != _MENDED_ALL:  # the look, then the raise, the race going on beside them in one place
+                most, seeding = -1, False
+                if phase == _LOOKING and cutting(look, run[_MEND.looks]) and not racing.over(spare, race):
+                    look = cut_step(values, pen, header, trail, cells, penalties, look)
+                    most, seeding = racing.paced(race, look[_LOOKED])
+                elif phase == _LOOKING:
+                    looked = cut_verdict(values, pen, trail, cells, penalties, cap, look)
+                    raising = not (_doomed(looked[0], restart, fills) or racing.over(spare, race))
+                    if raising:
+                        budget = _budget_for(budget, restart, fills, looked[0])
+                        race[_LEAD] = 0  # the edits cut nothing apart: the source keeps what it had, a restart
+                        if looked[2] == 1 and looked[0] < 0:  # costs as much
+                            race[_LEAD] = _race_lead(least, looked[1], budget, run[_MEND.lead])
+                            race[_HEAD] = ti.select(race[_LEAD] > 0 and bound < 0,
+                                                    _race_head(kept, run[_MEND.head]), 0)
+                    rising = raise_start(values, links, cells, cap, raising)
+                    phase = _RAISING
+                elif (rising[_NEXT] != rising[_END] and looked[1] + rising[_RAISED] * RAISE_COST <= budget
+                      and not racing.over(spare, race)):
+                    rising, rose = raise_step(values, pen, header, links, trail, cap, rising)
+                    if rose:
+                        most, seeding = racing.paced(race, looked[1] + rising[_RAISED])
+                else:
+                    raise_end(links, trail, rising)
+                    left, phase = race, _MENDED_ALL
+                    if not raising or looked[1] + rising[_RAISED] * RAISE_COST > budget or racing.over(spare, race):
+                        gave_up, most, seeding = 1, _NEVER, True  # the race runs to its end: the restart
+                if most >= 0:
+                    race = racing.advance(values, spare, pen, race_links, race, most, seeding, cap)
+            reached, raised = looked[0], rising[_RAISED]
+            spent = looked[1] + raised * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
-            run[_MENDED.raced], run[_MENDED.head] = race[_TAKEN], race[_HEAD]
-            run[_MENDED.seeded] = ti.select(race[_FROM] == _SEEDED, 1, 0)
-            run[_MENDED.gave_up] = ti.select(
-                spent > budget or _doomed(reached, restart, fills) or racing.over(spare, race), 1, 0)
-            if run[_MENDED.gave_up]:  # the race runs to its end: the restart, its log the search's from now on
-                race = racing.finish(values, spare, pen, race_links, race, cap)
+            run[_MENDED.raced], run[_MENDED.head] = left[_TAKEN], left[_HEAD]
+            run[_MENDED.seeded] = ti.select(left[_FROM] == _SEEDED, 1, 0)
+            run[_MENDED.gave_up] = gave_up
+            if gave_up:  # the race ran to its end: the restart, its log the search's from now on
                 racing.hand_log(race_links, race, links, heads)
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
                 run[_MENDED.buckets], run[_MENDED.frontier] = race[_EMPTIED], race[_LISTED]
