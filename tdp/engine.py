@@ -2257,8 +2257,9 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     raising = not (_doomed(looked[0], restart, fills) or racing.over(spare, race))
                     if raising:
                         budget = _budget_for(budget, restart, fills, looked[0])
-                        race[_LEAD] = 0  # the edits cut nothing apart: the source keeps what it had, a restart
-                        if looked[2] == 1 and looked[0] < 0:  # costs as much
+                        # the edits cut nothing apart: the source keeps what it had, a restart costs as much
+                        race[_LEAD] = 0
+                        if looked[2] == 1 and looked[0] < 0:
                             race[_LEAD] = _race_lead(least, looked[1], budget, run[_MEND.lead])
                             race[_HEAD] = ti.select(race[_LEAD] > 0 and bound < 0,
                                                     _race_head(kept, run[_MEND.head]), 0)
