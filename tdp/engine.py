@@ -182,8 +182,8 @@ _LOOKED, _QUEUED, _LIVE, _CROWDED, _LOST, _SEALED, _CUT, _CHECK_AT, _CLUSTERS = 
 #: A raise's ints (``_raise_rules``): its queue's next entry and end, the cells raised, the cells waiting to be looked
 #: at again, the cells raised since they were last looked at.
 _NEXT, _END, _RAISED, _DEFERRING, _ROSE = range(5)
-#: A mend's phases: its look, its raise, done (the race beside them).
-_LOOKING, _RAISING, _MENDED_ALL = range(3)
+#: A mend's phases: its look, its raise, and the raise over (the race goes on beside both).
+_LOOKING, _RAISING, _RAISE_OVER = range(3)
 #: A blocked edit's mark in row 2 of ``cut_off``'s trail when it checks its clusters (a part's is the part + 1):
 #: a cluster's root holds -(_ROOT + its side + 1), any other blocked cell -(its parent + 2) - so layers of _ROOT - 2
 #: padded cells or more (23,000 cells a side) are not checked.
@@ -2247,7 +2247,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             look = cut_start(values, pen, header, trail, cells, penalties, cap)
             looked, rising, left = ti.Vector([0, 0, 0]), ti.Vector([0, 0, 0, 0, 0]), race
             phase, raising, gave_up = _LOOKING, False, 0
-            while phase != _MENDED_ALL:  # the look, then the raise, the race going on beside them in one place
+            while phase != _RAISE_OVER:  # the look, then the raise, the race going on beside them in one place
                 most, seeding = -1, False
                 if phase == _LOOKING and cutting(look, run[_MEND.looks]) and not racing.over(spare, race):
                     look = cut_step(values, pen, header, trail, cells, penalties, look)
@@ -2272,7 +2272,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                         most, seeding = racing.paced(race, looked[1] + rising[_RAISED])
                 else:
                     raise_end(links, trail, rising)
-                    left, phase = race, _MENDED_ALL
+                    left, phase = race, _RAISE_OVER
                     if not raising or looked[1] + rising[_RAISED] * RAISE_COST > budget or racing.over(spare, race):
                         gave_up, most, seeding = 1, _NEVER, True  # the race runs to its end: the restart
                 if most >= 0:
