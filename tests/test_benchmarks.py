@@ -20,9 +20,15 @@ SCRIPTS = {"sweep": "rows", "backends": "rows", "worlds": "summary", "costs": "r
            "budget": "rows", "equal_time": "summary", "ab": "rows"}
 
 
+#: A smoke run's limit, for a run that hangs: on a machine whose Taichi cache is cold, the first runs compile every
+#: kernel they use beside the suite's own process (sweep, backends and predict took over 300 s each so on the 2-core VM
+#: at half speed, the twenty-fourth session; 35 s at most warm).
+SMOKE_RUN_S = 1200
+
+
 def _smoke_run(script: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", f"benchmarks.{script}", "--quick"], cwd=ROOT, capture_output=True,
-                          text=True, timeout=300)
+                          text=True, timeout=SMOKE_RUN_S)
 
 
 class SmokeRuns:
