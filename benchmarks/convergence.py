@@ -1,20 +1,21 @@
 """The setup phase and its repair: DistanceField.converge() next to scipy's Dijkstra (and scikit-fmm) in one process.
 
-    python -m benchmarks.convergence [--quick]
+    python -m benchmarks.convergence [--quick] [--only NAME ...]
 
-Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each
-with goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells
-wide (``tdp.random_worlds.maze``), goals at a corner, the centre and a random free cell; the MovingAI maps in
-../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's world, nav2's
-1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil (16
-neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner goal,
-turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
+Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each with
+goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
+(``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one
+corridor a cell wide winding row by row: ``serpentine``), goals at a corner, the centre and a random free cell; the
+MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
+world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil
+(16 neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner
+goal, turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
 timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are timed in turn,
-warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the solve takes
-under 5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm medians, where installed
-(``pip install tcod scikit-fmm``): tcod's ``dijkstra2d`` (C, one thread, the 16-neighbour edge map with integer
-costs x 1000; it cannot forbid corner cutting, so its graph has more edges than ours) and scikit-fmm's whole-field
-distance (a different, continuous distance).
+warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the solve takes under
+5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm medians, where installed (``pip install
+tcod scikit-fmm``): tcod's ``dijkstra2d`` (C, one thread, the 16-neighbour edge map with integer costs x 1000; it
+cannot forbid corner cutting, so its graph has more edges than ours) and scikit-fmm's whole-field distance (a
+different, continuous distance).
 
 Repair, on maps of 65,536 cells or more (4,096 with --quick): from the converged field, a 3 x 3 box on the middle of the
 optimal route from the farthest reachable cell, a wall of 16 cells across that route, a pocket sealed (a square ring of
@@ -63,7 +64,10 @@ SIZES, QUICK_SIZES = [128, 192, 256, 512, 1024, 2048], [64, 128]
 #: Dense random maps as well: (side, obstacle density); routes wind far more than at 20 %.
 DENSE, QUICK_DENSE = [(512, 0.3), (1024, 0.3), (512, 0.4)], [(64, 0.3)]
 #: Perfect mazes: (side, corridor width); a tile holds pieces of corridors at very different distances.
-MAZES, QUICK_MAZES = [(512, 1), (512, 2), (512, 4)], [(64, 1)]
+MAZES, QUICK_MAZES = [(256, 1), (512, 1), (512, 2), (512, 4)], [(64, 1)]
+#: Serpentines (side): one corridor a cell wide winding row by row, a search's frontier one cell all the way - where
+#: Dijkstra's heap is at its cheapest and each cell has two edges against our stencil's 16 moves.
+SERPENTINES, QUICK_SERPENTINES = [256, 512], [64]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
 #: Every case runs on the default stencil (16 neighbours, no corner cutting); these maps run again on each of
@@ -127,6 +131,27 @@ def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[in
     goals = {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
              "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
     return [(f"maze {size}² {corridor}-cell {place}", occupied, goal) for place, goal in goals.items()]
+
+
+def serpentine(size: int) -> np.ndarray:
+    """One corridor a cell wide winding across a (size, size) map, True = wall: rows 1, 3, 5 ... free, the walls
+    between them open at the right and the left end in turn, the border a wall (a boustrophedon)."""
+    occupied = np.ones((size, size), bool)
+    occupied[1:size - 1:2, 1:size - 1] = False
+    for row in range(2, size - 2, 2):
+        occupied[row, size - 2 if row % 4 == 2 else 1] = False
+    return occupied
+
+
+def serpentine_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A serpentine (``serpentine``) and its goals: the corridor's first cell, the free cell nearest the centre, a
+    random free cell."""
+    occupied = serpentine(size)
+    free = np.argwhere(~occupied)
+    centre = free[np.argmin(np.abs(free - size // 2).sum(axis=1))]
+    goals = {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
+             "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
+    return [(f"serpentine {size}² {place}", occupied, goal) for place, goal in goals.items()]
 
 
 def movingai_cases(name: str) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
@@ -448,21 +473,29 @@ def figure(results: list[dict], path: Path) -> None:
 def main() -> None:
     parser = quick_parser(__doc__)
     parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--only", nargs="+", metavar="NAME",
+                        help="only the cases whose name holds one of these (no doors; saved as convergence-only)")
     args = parser.parse_args()
     if args.quick:
-        sizes, dense, mazes, maps, stencil_maps = QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_MAPS, QUICK_STENCIL_MAPS
+        sizes, dense, mazes, serpentines, maps, stencil_maps = (QUICK_SIZES, QUICK_DENSE, QUICK_MAZES,
+                                                                QUICK_SERPENTINES, QUICK_MAPS, QUICK_STENCIL_MAPS)
     else:
-        sizes, dense, mazes, maps, stencil_maps = SIZES, DENSE, MAZES, MAPS, STENCIL_MAPS
+        sizes, dense, mazes, serpentines, maps, stencil_maps = SIZES, DENSE, MAZES, SERPENTINES, MAPS, STENCIL_MAPS
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
     cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
+    cases += [case for size in serpentines for case in serpentine_cases(size)]
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
         cases += ros_cases()
     cases = [(*case, DEFAULT_STENCIL) for case in cases] + [
         (f"{name}, {stencil_name(stencil)}", occupied, goal, stencil)
         for name, occupied, goal in cases if name in stencil_maps for stencil in STENCILS]
+    if args.only:
+        cases = [case for case in cases if any(part in case[0] for part in args.only)]
+        if not cases:
+            raise SystemExit(f"--only {' '.join(args.only)}: no case's name holds any of these")
     results = []
     for name, occupied, goal, stencil in cases:
         results.append(measure(name, occupied, goal, repeats, 4096 if args.quick else LARGE, stencil))
@@ -483,10 +516,10 @@ def main() -> None:
                   f"{q['ratio']:.3f}", f"{q['converge_ratio']:.3f}", str(q["changed"]),
                   f"{q['converge_ns_per_changed']:.0f}", f"{q['scratch_ns_per_reached']:.0f}", str(q["equal"])]
                  for r in results for q in r.get("repairs", [])])
-    closing = [] if args.quick else doors(args.repeats)
+    closing = [] if args.quick or args.only else doors(args.repeats)
     summary = summarise(results, closing)
     print(summary)
-    save_results("convergence-quick" if args.quick else "convergence",
+    save_results("convergence" + ("-quick" if args.quick else "") + ("-only" if args.only else ""),
                  {"results": results, "doors": closing, "summary": summary}, lambda png: figure(results, png))
 
 
