@@ -1603,6 +1603,13 @@ def _budget_for(budget, restart, fills, reached):
     return fallen
 
 
+def mend_work(looked: int, raised: int) -> int:
+    """A mend's work in cells a search takes: the ``looked`` cells of its first look and RAISE_COST for each of the
+    ``raised`` cells, which its budget (``_budget_for``) bounds. A pure rule, compiled into the mend as
+    ``_mend_work``."""
+    return looked + RAISE_COST * raised
+
+
 def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
     """Whether a source that now reaches ``reached`` cells (-1: not counted) lost so many of the cells the last search
     reached (a restart's price ``restart``, in cells a search takes, less the reset's ``fills``) that raising them
@@ -1647,7 +1654,8 @@ def logged_cells(step: int) -> int:
     return (1 << (step // 4)) + (((step % 4) << (step // 4)) >> 2)
 
 
-_doomed, _race_lead, _race_head = ti.func(restart_is_cheaper), ti.func(race_lead), ti.func(race_head)
+_mend_work, _doomed = ti.func(mend_work), ti.func(restart_is_cheaper)
+_race_lead, _race_head = ti.func(race_lead), ti.func(race_head)
 _seed_bound = ti.func(seed_bound)
 _logged_cells = ti.func(logged_cells)
 (_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED, _HEAD,
@@ -2246,9 +2254,10 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             race[_LEAD] = _race_lead(least, 0, budget, run[_MEND.lead])
             look = cut_start(values, pen, header, trail, cells, penalties, cap)
             looked, rising, left = ti.Vector([0, 0, 0]), ti.Vector([0, 0, 0, 0, 0]), race
-            phase, raising, gave_up = _LOOKING, False, 0
+            phase, raising, gave_up, spent = _LOOKING, False, 0, 0
             while phase != _RAISE_OVER:  # the look, then the raise, the race going on beside them in one place
                 most, seeding = -1, False
+                spent = _mend_work(looked[1], rising[_RAISED])  # the look's cells once it ended, the raise's
                 if phase == _LOOKING and cutting(look, run[_MEND.looks]) and not racing.over(spare, race):
                     look = cut_step(values, pen, header, trail, cells, penalties, look)
                     most, seeding = racing.paced(race, look[_LOOKED])
@@ -2265,20 +2274,18 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                                                     _race_head(kept, run[_MEND.head]), 0)
                     rising = raise_start(values, links, cells, cap, raising)
                     phase = _RAISING
-                elif (rising[_NEXT] != rising[_END] and looked[1] + rising[_RAISED] * RAISE_COST <= budget
-                      and not racing.over(spare, race)):
+                elif rising[_NEXT] != rising[_END] and spent <= budget and not racing.over(spare, race):
                     rising, rose = raise_step(values, pen, header, links, trail, cap, rising)
                     if rose:
                         most, seeding = racing.paced(race, looked[1] + rising[_RAISED])
                 else:
                     raise_end(links, trail, rising)
                     left, phase = race, _RAISE_OVER
-                    if not raising or looked[1] + rising[_RAISED] * RAISE_COST > budget or racing.over(spare, race):
+                    if not raising or spent > budget or racing.over(spare, race):
                         gave_up, most, seeding = 1, _NEVER, True  # the race runs to its end: the restart
                 if most >= 0:
                     race = racing.advance(values, spare, pen, race_links, race, most, seeding, cap)
             reached, raised = looked[0], rising[_RAISED]
-            spent = looked[1] + raised * RAISE_COST
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
             run[_MENDED.raced], run[_MENDED.head] = left[_TAKEN], left[_HEAD]
             run[_MENDED.seeded] = ti.select(left[_FROM] == _SEEDED, 1, 0)

@@ -846,6 +846,17 @@ def test_a_race_leads_unless_the_least_restart_outnumbers_what_it_could_take_bef
     assert least < lead * max(budget, looked) or given_lead == 0
 
 
+@given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**7))
+def test_a_mends_work_prices_each_raised_cell_as_restart_is_cheaper_weighs_it(reached, lost, fills):
+    """``mend_work``: one cell of a search for each cell looked at and RAISE_COST for each raised - the price at which
+    ``restart_is_cheaper`` weighs raising the cells a source lost against a restart that searches those it reaches
+    (and the reset's fills)."""
+    work = engine_module.mend_work
+    assert engine_module.restart_is_cheaper(reached, reached + lost + fills, fills) == (work(0, lost) > reached + fills)
+    assert work(reached + 1, lost) == work(reached, lost) + 1
+    assert work(reached, lost + 1) == work(reached, lost) + engine_module.RAISE_COST
+
+
 @given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6))
 def test_a_race_gets_its_head_start_only_where_a_race_that_loses_risks_no_more_than_its_share(kept, most, more):
     """``race_head``: all the cells nearer the source than the edits, or none where they are more than ``most``;
