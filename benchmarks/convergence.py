@@ -124,13 +124,20 @@ def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray,
 
 
 def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
-    """A perfect maze and its goals: the corner room, the free cell nearest the centre, a random free cell."""
+    """A perfect maze and its goals (``walled_goals``: the corner room first)."""
     occupied = maze(size, corridor, seed=size + corridor)
+    return [(f"maze {size}² {corridor}-cell {place}", occupied, goal)
+            for place, goal in walled_goals(occupied).items()]
+
+
+def walled_goals(occupied: np.ndarray) -> dict[str, tuple[int, int]]:
+    """Goals on a square map walled round (a maze, a serpentine): its first free cell, (1, 1), the free cell nearest
+    the centre, and a random free cell (seeded by the map's side)."""
+    size = occupied.shape[0]
     free = np.argwhere(~occupied)
     centre = free[np.argmin(np.abs(free - size // 2).sum(axis=1))]
-    goals = {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
-             "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
-    return [(f"maze {size}² {corridor}-cell {place}", occupied, goal) for place, goal in goals.items()]
+    return {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
+            "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
 
 
 def serpentine(size: int) -> np.ndarray:
@@ -144,14 +151,9 @@ def serpentine(size: int) -> np.ndarray:
 
 
 def serpentine_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
-    """A serpentine (``serpentine``) and its goals: the corridor's first cell, the free cell nearest the centre, a
-    random free cell."""
+    """A serpentine (``serpentine``) and its goals (``walled_goals``: the corridor's first cell first)."""
     occupied = serpentine(size)
-    free = np.argwhere(~occupied)
-    centre = free[np.argmin(np.abs(free - size // 2).sum(axis=1))]
-    goals = {"corner": (1, 1), "centre": tuple(int(v) for v in centre),
-             "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
-    return [(f"serpentine {size}² {place}", occupied, goal) for place, goal in goals.items()]
+    return [(f"serpentine {size}² {place}", occupied, goal) for place, goal in walled_goals(occupied).items()]
 
 
 def movingai_cases(name: str) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
