@@ -572,7 +572,7 @@ def test_a_mend_finds_what_its_edits_cut_off_before_anything_rises(monkeypatch, 
 def look_outcome(runs: list) -> tuple:
     """The last mend's _MendResult and the cells its first look took (its work less the raise's and the lowering's)."""
     outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
-    return outcome, outcome.spent - engine_module.RAISE_COST * outcome.raised - outcome.lowered
+    return outcome, outcome.spent - engine_module.mend_work(0, outcome.raised) - outcome.lowered
 
 
 def test_a_look_at_blocked_cells_far_apart_ends_once_each_ones_sides_are_joined(monkeypatch):
