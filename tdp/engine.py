@@ -1219,10 +1219,14 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     in float32, as ``updated`` computes it, and every move is at least 1 long, so the cells of the bucket being
     emptied depend on none of its cells (unfocused: each cell is taken once, with its final value). Its buckets:
     ``_bucket_rules``. ``logged``: its ``links`` have a third row, which logs each cell it lowers from the cap
-    (``_race_rules``: a race that loses puts them back)."""
-    crossing, moves, move_cost, penalty = cell.crossing, cell.moves, cell.move_cost, cell.penalty
+    (``_race_rules``: a race that loses puts them back). A cell taken reads the penalties of its 3 x 3 block once
+    (``around``), and tries the moves through a corner of it (``stencil.through_corner``) only when one of its four
+    corners is free: a one-cell corridor's cells try the four straight moves alone."""
+    moves, move_cost, penalty = cell.moves, cell.move_cost, cell.penalty
     buckets = _bucket_rules()
     unlink, link, clear = buckets.unlink, buckets.link, buckets.clear
+    straight = tuple(m for m in moves if not stencil.through_corner(m))
+    cornered = tuple(m for m in moves if stencil.through_corner(m))
 
     @ti.func
     def priority(value, i, j, focus_row, focus_col):
@@ -1253,24 +1257,59 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
             listed -= 1
             taken += 1
             i, j = c // width, c % width
-            value = values[0, i, j]
-            for m in ti.static(moves):  # the cells that move m takes from (i, j), penalties added (0 or inf):
-                u, v = i - m.dr, j - m.dc  # one branch, rarely taken, where a test per blocked cell mispredicts
-                cand = crossing(value + move_cost(pen, 0, u, v, m), pen, 0, u, v, m.crossed)
-                cand += penalty(pen, 0, u, v, 0)
-                if cand < values[0, u, v]:
-                    there = u * width + v
-                    if ti.static(logged):
-                        if values[0, u, v] >= cap:
-                            log(links, heads, there)
-                    values[0, u, v] = cand
-                    if links[1, there] == _UNLISTED:
-                        listed += 1
-                    else:
-                        unlink(links, heads, there)
-                    due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
-                    link(links, heads, there, due & mask)
+            value, block = values[0, i, j], around(pen, i, j)
+            for m in ti.static(straight):
+                listed = lower(values, pen, links, bucket, focus_row, focus_col, cap, i, j, value, block, m, listed)
+            if corner_open(block):  # one branch a cell, the same all along a corridor or across open ground
+                for m in ti.static(cornered):
+                    listed = lower(values, pen, links, bucket, focus_row, focus_col, cap, i, j, value, block, m,
+                                   listed)
         return ti.Vector([listed, taken])
+
+    @ti.func
+    def around(pen: ti.template(), i, j):
+        """The penalties (``penalty``) of the 3 x 3 block centred on padded cell (i, j), a 3 x 3 matrix: each move's
+        target and crossed cells from (i, j) but a knight's target. Read once, before the moves' stores: read per
+        move, each is read again after every store (the arrays might alias): 32 reads a cell for 8 cells (16 neighbours)."""
+        return ti.Matrix([[penalty(pen, 0, i + a, j + b, 0) for b in ti.static(range(-1, 2))]
+                          for a in ti.static(range(-1, 2))])
+
+    @ti.func
+    def corner_open(block):
+        """Whether a move through a corner of ``block`` (``around``) can be open: one of its four corners is free."""
+        least = 0.0
+        if ti.static(cornered):
+            least = ti.min(ti.min(block[0, 0], block[0, 2]), ti.min(block[2, 0], block[2, 2]))
+        return least == 0.0
+
+    @ti.func
+    def lower(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col, cap,
+              i, j, value, block, m: ti.template(), listed):
+        """Lower the cell that move ``m`` takes from padded cell (i, j) (its ``value``, its 3 x 3 ``block`` of
+        penalties) through it, if that lowers it - penalties added, 0 or inf, in ``crossing``'s order; one branch,
+        rarely taken -, and list it in the bucket of its priority; returns ``listed`` plus the cells newly listed."""
+        width, heads = values.shape[2], values.shape[1] * values.shape[2]
+        u, v = i - m.dr, j - m.dc
+        cand = value + move_cost(pen, 0, u, v, m)
+        for c in ti.static(m.crossed):
+            cand += block[c[0] - m.dr + 1, c[1] - m.dc + 1]
+        if ti.static(abs(m.dr) <= 1 and abs(m.dc) <= 1):
+            cand += block[1 - m.dr, 1 - m.dc]
+        else:
+            cand += penalty(pen, 0, u, v, 0)
+        if cand < values[0, u, v]:
+            there = u * width + v
+            if ti.static(logged):
+                if values[0, u, v] >= cap:
+                    log(links, heads, there)
+            values[0, u, v] = cand
+            if links[1, there] == _UNLISTED:
+                listed += 1
+            else:
+                unlink(links, heads, there)
+            due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
+            link(links, heads, there, due & (links.shape[1] - heads - 1))
+        return listed
 
     @ti.func
     def hand_over(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick,

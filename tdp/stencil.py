@@ -62,6 +62,13 @@ def _crossed_cells(dr: int, dc: int) -> tuple[tuple[int, int], ...]:
     return ((sr, 0), (sr, dc))
 
 
+def through_corner(move: Move) -> bool:
+    """Whether ``move`` starts on, or crosses, a diagonal neighbour of the cell Z it ends on: when Z's four diagonal
+    neighbours are all blocked, no such move reaches Z (a one-cell corridor's cells: the search skips them there)."""
+    touched = [(-move.dr, -move.dc)] + [(r - move.dr, c - move.dc) for r, c in move.crossed]
+    return any(abs(r) == 1 and abs(c) == 1 for r, c in touched)
+
+
 def check_neighbourhood(neighbourhood: int) -> int:
     """Return ``neighbourhood`` if it is 4, 8 or 16, else raise ValueError naming it."""
     if isinstance(neighbourhood, bool) or neighbourhood not in NEIGHBOURHOODS:

@@ -7,6 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from reference import distances_to
+from tdp import stencil
 from tdp.engine import Engine
 from tdp.random_worlds import maze
 from test_focus import assert_same_route
@@ -47,6 +48,20 @@ def test_the_search_on_mazes_equals_dijkstra(corridor, neighbourhood, corner_cut
     finite = np.isfinite(reference)
     np.testing.assert_allclose(ours[finite], reference[finite], rtol=2e-6)
     np.testing.assert_array_equal(ours, rounds_of_tiles(engine))
+
+
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(4, False), (8, False), (8, True), (16, False), (16, True)])
+def test_the_moves_through_a_corner_are_the_moves_a_cell_with_its_corners_blocked_cannot_take(neighbourhood,
+                                                                                             corner_cutting):
+    """The search skips the moves ``through_corner`` names into a cell whose four diagonal neighbours are blocked (a
+    one-cell corridor's): each is blocked there, and every other move open with the rest of its block free."""
+    occupied = np.zeros((5, 5), bool)
+    occupied[1::2, 1::2] = True  # the corners of the centre
+    centre = (2, 2)
+    for m in stencil.moves(neighbourhood, corner_cutting):
+        start = (centre[0] - m.dr, centre[1] - m.dc)
+        reaches = not occupied[start] and centre in [cell for cell, _ in stencil.legal_moves(occupied, start, (m,))]
+        assert reaches != stencil.through_corner(m), m
 
 
 @pytest.mark.parametrize("occupied, goal, focus", [
