@@ -1270,7 +1270,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     def around(pen: ti.template(), i, j):
         """The penalties (``penalty``) of the 3 x 3 block centred on padded cell (i, j), a 3 x 3 matrix: each move's
         target and crossed cells from (i, j) but a knight's target. Read once, before the moves' stores: read per
-        move, each is read again after every store (the arrays might alias): 32 reads a cell for 8 cells (16 neighbours)."""
+        move, each is read again after every store (the arrays might alias), 32 reads for 8 cells on 16 neighbours."""
         return ti.Matrix([[penalty(pen, 0, i + a, j + b, 0) for b in ti.static(range(-1, 2))]
                           for a in ti.static(range(-1, 2))])
 
