@@ -137,9 +137,12 @@ RAISE_COST = 2
 EDIT_COST = 4
 #: A search from the source races a mend's first look and, where the look found the edits' sides apart (the goal may
 #: be sealed in a part of any size, or a pocket sealed off), its raise (``_race_rules``), in a spare buffer: RACE_LEAD
-#: cells taken for each cell the mend has looked at or raised (each about as dear as a search's). If it finishes
-#: first, it is the repair, a restart that cost its own cells and the mend's beside them, at most 1 + 1 / RACE_LEAD
-#: of them. It runs only where it could win (``race_lead``).
+#: cells taken for each cell the mend has looked at or raised. If it finishes first, it is the repair, a restart that
+#: cost its own cells and the mend's beside them: 1 + 1 / RACE_LEAD of them where those are cells looked at, up to
+#: about 1 + RAISE_COST / RACE_LEAD where they are raised cells (1.5-1.9 cells of a search each on corridors, their
+#: seeds counted). Paced by the raise's price instead, the worst edits fell from 1.8-2.0x to 1.4-1.7x a fresh
+#: converge, but noise on random maps, whose mend finishes with the race beside it, cost 1.3-1.5x more (ARCHITECTURE
+#: §7). It runs only where it could win (``race_lead``).
 RACE_LEAD = 2
 #: Where the look found the edits' sides apart, the race gets a head start in the raise: the cells nearer the source
 #: than the edits (``kept``: the log's count, a lower bound on what the source still reaches), which a race that wins
