@@ -18,13 +18,13 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
 Kernels come from ``_kernels_for``, one set per compile-time spec - lanes (0 for the goal layer, LANES for node
 windows), neighbourhood, corner rule - closed over as constants, built from small rule factories (``_lane_rules``,
 ``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``, ``_search_rules``, ``_paint_rules`` ...)
-by one kernel factory per phase: iterate, settle, search, set up, edit, read. A launch's several parameters
-travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays``: arrays, edits, reads;
-``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells, source), cap and
-origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up`` launches every
-kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when active (their
-inputs changed in the previous iteration). Which kernel runs when, and on how many threads (``_Layers._waves``
-alone decides): ARCHITECTURE §7.
+by one kernel factory per phase: iterate, settle, search (the goal layer), fill (node windows), set up, edit, read.
+A launch's several parameters travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays``:
+arrays, edits, reads; ``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells,
+source), cap and origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up``
+launches every kernel of the set on a scratch layer. Each kind of layer is cut into 8 x 8 tiles, relaxed only when
+active (their inputs changed in the previous iteration). Which kernel runs when, and on how many threads
+(``_Layers._waves`` alone decides): ARCHITECTURE §7.
 
 Kernels take ndarrays, so they compile once per spec and not once per map. Kernels must live in a ``.py`` file:
 Taichi reads their source.
@@ -36,6 +36,7 @@ import io
 import logging
 import math
 import os
+import textwrap
 import time
 import weakref
 from types import SimpleNamespace
@@ -379,6 +380,44 @@ _initialised = False
 _on_cpu = True
 
 
+@functools.lru_cache(maxsize=None)
+def _wrapped(width: int, text: str) -> tuple[str, ...]:
+    return tuple(textwrap.TextWrapper(width=width).wrap(text))
+
+
+class _MemoisedWrapper(textwrap.TextWrapper):
+    """A ``TextWrapper`` as Taichi's front end makes one for every AST node (``width`` its only option), with
+    ``wrap`` memoised."""
+
+    def wrap(self, text: str) -> list[str]:
+        return list(_wrapped(self.width, text))
+
+
+def _memoised_source_lines(source_lines):
+    """``source_lines`` (a function's source lines and first line number) memoised by function."""
+    cached = functools.lru_cache(maxsize=None)(source_lines)
+
+    def lines(function) -> tuple[list[str], int]:
+        text, first = cached(function)
+        return list(text), first
+    return lines
+
+
+def _quicken_taichi_front_end() -> None:
+    """Memoise two pure steps that Taichi 1.7's front end repeats for every kernel it compiles and every ti.func
+    call it inlines - about 2,300 of them for the exact planner's 16 kernels, 10.8 s of a 19 s ``tdp run`` with
+    the offline cache warm (it caches the compiled code, keyed by the IR these steps build): reading a function's
+    source lines (``inspect.getsourcelines`` tokenises its block each time) and wrapping each AST node's source
+    line at 80 columns for its debug message (a ``TextWrapper`` per node). The strings out are the same; another
+    Taichi version is left as it is."""
+    from taichi.lang import kernel_impl
+    from taichi.lang.ast import ast_transformer_utils
+
+    if _DIRECT_TAICHI and ast_transformer_utils.TextWrapper is textwrap.TextWrapper:
+        ast_transformer_utils.TextWrapper = _MemoisedWrapper
+        kernel_impl.getsourcelines = _memoised_source_lines(kernel_impl.getsourcelines)
+
+
 def init_taichi() -> None:
     """Initialise Taichi once per process: ``TDP_ARCH`` (default cpu) and ``TDP_THREADS`` (default 2).
 
@@ -395,6 +434,7 @@ def init_taichi() -> None:
     global _initialised, _on_cpu
     if _initialised:
         return
+    _quicken_taichi_front_end()
     arch_name = os.environ.get("TDP_ARCH", "cpu")
     arch = getattr(ti, arch_name, None)
     if arch is None:
@@ -2407,6 +2447,18 @@ def _setup_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     store_penalty(pen, g, i, j, lane, value)
 
 
+def _fill_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
+    """Packed lanes' fill: ``fill_values`` (Taichi's own fill of a vector ndarray takes the value as a template
+    argument: it compiled a kernel for every cap it was given, 0.03-0.15 s each, and took 3 ms a fill after)."""
+    broadcast = cell.broadcast
+
+    @kernel
+    def fill_values(values: t.values, value: ti.f32):
+        """Every cell of ``values``, every lane, to ``value``."""
+        for index in ti.grouped(values):
+            values[index] = broadcast(value)
+
+
 def _paint_rules(cell: SimpleNamespace) -> SimpleNamespace:
     """Painting edits into a kind of layer: ``paint_cells`` (``paint``'s work, which ``settle_painting`` does too,
     for the edits ``_LayerArrays.paint`` held back)."""
@@ -2531,7 +2583,7 @@ class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
     stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs - closed over as
     constants, made by one factory per phase (iterate,
-    settle, search, set up, edit, read) and named on this object. The decorator that makes each kernel also records
+    settle, search or fill, set up, edit, read) and named on this object. The decorator that makes each kernel also records
     it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
     :func:`_kernels_for`, which caches one set per spec.
 
@@ -2554,7 +2606,7 @@ class _Kernels:
             return made[-1]
 
         phases = [_iterate_kernels, _settle_kernels, _setup_kernels, _edit_kernels, _read_kernels]
-        for phase in phases + ([_search_kernels] if lanes == 0 else []):
+        for phase in phases + ([_search_kernels] if lanes == 0 else [_fill_kernels]):
             phase(kernel, cell, types)
         self.all = tuple(made)
         for made_kernel in made:
@@ -2773,7 +2825,10 @@ class _LayerArrays:
         began = time.perf_counter()
         self.rebase()
         self.tick = _first_round(self.tick)
-        self.src.fill(self.cap)  # the other buffer follows before the next busy iteration (``iterate``)
+        if self.lanes:  # the other buffer follows before the next busy iteration (``iterate``)
+            self.kernels.fill_values(values=self.src, value=self.cap)
+        else:
+            self.src.fill(self.cap)  # a memset: 0.38 ms on 1024², where a kernel took 5
         self.mirrored = self.listed = self.round_open = False  # no round is open after a reset
         if tiles:
             self.stamps.fill(-1)

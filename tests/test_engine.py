@@ -216,6 +216,52 @@ def test_warm_up_changes_nothing():
         np.testing.assert_array_equal(warmed.node_distances(j), plain.node_distances(j))
 
 
+def test_node_layers_of_new_caps_compile_no_fill_kernel():
+    """A reset fills the node windows with their cap by the engine's own kernel: Taichi's fill of a vector ndarray
+    compiles a kernel for every value it is given (632 of them in one run of this suite)."""
+    from taichi import _kernels
+
+    engine_module.init_taichi()  # (ti.init starts the kernels' instances afresh)
+    taichis_fill = _kernels.fill_ndarray_matrix._primal
+    before = len(taichis_fill.compiled_kernels)
+    occupied = random_map(20, 20, 0.2, 5)
+    nodes = np.argwhere(~occupied)[::40]
+    for cap in (5.0, 6.5, 8.0):
+        engine = Engine(occupied, (0, 0), nodes=nodes, node_cap=cap)
+        engine.converge()
+        ours, expected = engine.node_distances(0), distances_to(occupied, tuple(nodes[0]))
+        assert_distances_match(np.where(ours < cap, ours, np.inf), np.where(expected < cap, expected, np.inf), 1e-5)
+    assert len(taichis_fill.compiled_kernels) == before
+
+
+def test_the_quickened_taichi_front_end_reads_and_wraps_as_taichi_does():
+    """The engine memoises two steps of Taichi 1.7's front end (a function's source lines, each AST node's line
+    wrapped at 80 columns): what they return is what Taichi's own steps return, and a caller's changes to a result
+    do not reach the next."""
+    import inspect
+    import textwrap
+
+    import taichi as ti
+    from taichi.lang import _wrap_inspect, kernel_impl
+    from taichi.lang.ast import ast_transformer_utils
+
+    engine_module.init_taichi()
+    if tuple(ti.__version__[:2]) != (1, 7):
+        pytest.skip("the front end is quickened on Taichi 1.7 only")
+    assert ast_transformer_utils.TextWrapper is not textwrap.TextWrapper
+    lines = inspect.getsource(engine_module).splitlines()
+    for line in lines[::7] + ["", " " * 90 + "^" * 30, "x" * 200]:
+        wrapped = ast_transformer_utils.TextWrapper(width=80).wrap(line)
+        assert wrapped == textwrap.TextWrapper(width=80).wrap(line)
+        wrapped.append("changed")
+        assert ast_transformer_utils.TextWrapper(width=80).wrap(line) == textwrap.TextWrapper(width=80).wrap(line)
+    function = engine_module._cell_rules
+    source, first = kernel_impl.getsourcelines(function)
+    assert (source, first) == _wrap_inspect.getsourcelines(function)
+    source.clear()
+    assert kernel_impl.getsourcelines(function) == _wrap_inspect.getsourcelines(function)
+
+
 @pytest.mark.parametrize("serial_tiles", [0, 10**6])
 def test_iterations_after_a_converge_cut_short_finish_it_first(monkeypatch, serial_tiles):
     """A converge stopped early may leave values below the fixed point's (a raise wave under way), which synchronous
