@@ -7,7 +7,8 @@ process, Taichi on every core) and on a local Dask cluster (one worker process p
 Taichi thread each). Each wall time counts everything a user waits for: the cluster's start, the workers' imports
 and kernel compiles, every episode and the journal. A one-world sweep on each backend runs first, untimed, so
 that Taichi's on-disk kernel cache is warm for both thread counts. Prints both times, the speed-up, and whether
-the two tables are equal apart from the measured times (they must be).
+the two tables are equal apart from the measured times (they must be). --quick runs ``specs/speedup-quick.yaml``
+without the warm-up sweeps (a smoke run: its times include the kernels' compiles).
 """
 from __future__ import annotations
 
@@ -50,7 +51,8 @@ def main() -> None:
     warm = load_spec(SPECS / "speedup-quick.yaml")
     with tempfile.TemporaryDirectory() as folder:
         folder = Path(folder)
-        for name, backend in (("warm-serial", {"serial": True}), ("warm-cluster", {"workers": args.workers})):
+        for name, backend in () if args.quick else (("warm-serial", {"serial": True}),
+                                                       ("warm-cluster", {"workers": args.workers})):
             (folder / name).mkdir()
             run_sweep(warm, folder / name, log=io.StringIO(), **backend)
         (folder / "serial").mkdir()

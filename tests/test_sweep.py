@@ -165,7 +165,10 @@ def test_two_worlds_on_one_map_get_their_own_names_and_oracles(tmp_path):
 
 
 def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
-    spec = spec_file(tmp_path, SMALL)
+    """Killed after three episodes and run again: the rest run, the journal's first lines kept. One planner kind,
+    so that each of the two processes compiles one set of kernels."""
+    spec = spec_file(tmp_path, "worlds: [{family: crossing, size: 60, seeds: {first: 0, count: 4}}]\n"
+                               "planners: [{planner: exact}]\n")
     out = tmp_path / "out"
     command = [sys.executable, "-m", "tdp", "sweep", str(spec), "--serial", "--out", str(out)]
     process = subprocess.Popen(command, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
