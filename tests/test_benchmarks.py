@@ -1,7 +1,7 @@
 """Each benchmark script runs in its --quick form and writes its JSON and figure (so the scripts keep working).
 
-The smoke runs take three minutes of one core, and the rest of the suite leaves most of the second core idle (it
-is mostly Python on the calling thread): so once the suite is collected, ``conftest.py`` moves these tests to the
+The smoke runs take about seven minutes of one core (each process parses and loads the kernels it uses again),
+and the rest of the suite leaves most of the second core idle (it is mostly Python on the calling thread): so once the suite is collected, ``conftest.py`` moves these tests to the
 end and starts the runs, one at a time, longest first, in a background thread; each test waits for its script's.
 Their figures are not timings that matter."""
 import json
@@ -14,10 +14,11 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results"
-#: Each script and the key its JSON must fill, the longest runs first (sweep 35 s ... budget 10 s on the 2-core VM).
-SCRIPTS = {"sweep": "rows", "backends": "rows", "worlds": "summary", "costs": "rows", "predict": "summary",
-           "convergence": "results", "kernel": "results", "warehouse": "rows", "blockage": "rows", "paper": "rows",
-           "budget": "rows", "equal_time": "summary", "ab": "rows"}
+#: Each script and the key its JSON must fill, the longest runs first (convergence 57 s ... ab 14 s on the 2-core VM,
+#: warm cache, the twenty-eighth session).
+SCRIPTS = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
+           "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
+           "kernel": "results", "equal_time": "summary", "ab": "rows"}
 
 
 #: A smoke run's limit, for a run that hangs: on a machine whose Taichi cache is cold, the first runs compile every
