@@ -35,6 +35,7 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.warehouse
 	$(PY) -m benchmarks.equal_time
 	$(PY) -m benchmarks.costs
+	$(PY) -m benchmarks.startup
 
 clean:
 	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick

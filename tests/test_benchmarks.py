@@ -18,7 +18,7 @@ RESULTS = ROOT / "benchmarks" / "results"
 #: warm cache, the twenty-eighth session).
 SCRIPTS = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
            "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
-           "kernel": "results", "equal_time": "summary", "ab": "rows"}
+           "kernel": "results", "equal_time": "summary", "startup": "rows", "ab": "rows"}
 
 
 #: A smoke run's limit, for a run that hangs: on a machine whose Taichi cache is cold, the first runs compile every
