@@ -19,40 +19,45 @@ def offsets(neighbourhood: int):
     return {4: STRAIGHT, 8: STRAIGHT + DIAGONAL, 16: STRAIGHT + DIAGONAL + KNIGHT}[neighbourhood]
 
 
-def move_allowed(free: np.ndarray, r: int, c: int, dr: int, dc: int, corner_cutting: bool) -> bool:
-    rows, cols = free.shape
-
-    def ok(y, x):
-        return 0 <= y < rows and 0 <= x < cols and free[y, x]
-
-    if not ok(r + dr, c + dc):
-        return False
+def crossed(dr: int, dc: int, corner_cutting: bool) -> list[tuple[int, int]]:
+    """The cells besides its target that move (dr, dc) must find free, as offsets from the cell it leaves: none
+    for a straight move or with corner cutting; a diagonal's two side cells; a knight move's two cells beside the
+    straight line to its target (for (1, 2): (0, 1) and (1, 1))."""
     if corner_cutting or abs(dr) + abs(dc) == 1:
-        return True
+        return []
     sr = 1 if dr > 0 else -1
     sc = 1 if dc > 0 else -1
     if abs(dr) == 1 and abs(dc) == 1:
-        return ok(r + dr, c) and ok(r, c + dc)
+        return [(dr, 0), (0, dc)]
     if abs(dc) == 2:
-        return ok(r, c + sc) and ok(r + dr, c + sc)
-    return ok(r + sr, c) and ok(r + sr, c + dc)
+        return [(0, sc), (dr, sc)]
+    return [(sr, 0), (sr, dc)]
 
 
 def graph(occupied: np.ndarray, neighbourhood: int, corner_cutting: bool, cost: np.ndarray | None = None):
     """Directed sparse graph V -> Z with weight |V - Z| for every allowed move between free cells; with ``cost``,
     |V - Z| x (cost[V] + cost[Z]) / 2 in float64."""
-    free = ~occupied
-    rows, cols = free.shape
+    rows, cols = occupied.shape
+    free = np.zeros((rows + 4, cols + 4), bool)  # two cells of blocked border: every move's cells fall inside
+    free[2:-2, 2:-2] = ~occupied
+
+    def free_at(dr: int, dc: int) -> np.ndarray:
+        """For every cell (r, c) of the map: whether cell (r + dr, c + dc) is on the map and free."""
+        return free[2 + dr:2 + dr + rows, 2 + dc:2 + dc + cols]
+
+    index = np.arange(rows * cols).reshape(rows, cols)
     src, dst, weight = [], [], []
-    for r, c in zip(*np.nonzero(free)):
-        for dr, dc in offsets(neighbourhood):
-            if move_allowed(free, r, c, dr, dc, corner_cutting):
-                src.append(r * cols + c)
-                dst.append((r + dr) * cols + c + dc)
-                mean = 1.0 if cost is None else (float(cost[r, c]) + float(cost[r + dr, c + dc])) / 2
-                weight.append(math.hypot(dr, dc) * mean)
+    for dr, dc in offsets(neighbourhood):
+        allowed = free_at(0, 0) & free_at(dr, dc)
+        for y, x in crossed(dr, dc, corner_cutting):
+            allowed &= free_at(y, x)
+        r, c = np.nonzero(allowed)
+        src.append(index[r, c])
+        dst.append(index[r + dr, c + dc])
+        mean = 1.0 if cost is None else (cost[r, c].astype(np.float64) + cost[r + dr, c + dc].astype(np.float64)) / 2
+        weight.append(np.full(len(r), math.hypot(dr, dc)) * mean)
     n = rows * cols
-    return coo_matrix((weight, (src, dst)), shape=(n, n)).tocsr()
+    return coo_matrix((np.concatenate(weight), (np.concatenate(src), np.concatenate(dst))), shape=(n, n)).tocsr()
 
 
 def distances_to(occupied: np.ndarray, goal, neighbourhood: int = 16, corner_cutting: bool = False,
