@@ -147,6 +147,21 @@ def sweep_benchmark(doc: str, name: str, summarise: Callable[[list[dict]], list[
                              "rows": table}, lambda png: figure(summary, png))
 
 
+def seconds_bars(path, labels: list[str], seconds: list[float], colours: list[str], xlabel: str, title: str,
+                 digits: int = 1) -> None:
+    """A figure of one horizontal bar per label at its seconds, each bar's time written beside it."""
+    from tdp.plot import pyplot, save_figure
+
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(5, 3))
+    ax.barh(labels, seconds, color=colours)
+    for y, value in enumerate(seconds):
+        ax.text(value, y, f" {value:.{digits}f} s", va="center", fontsize=8)
+    ax.set_xlabel(xlabel)
+    ax.set_title(title, fontsize=9)
+    save_figure(fig, path)
+
+
 def grouped_bars(ax, groups: list[str], series: dict[str, list[float]]) -> None:
     """One bar per series side by side over each group, the groups named below and the series in a legend."""
     import numpy as np

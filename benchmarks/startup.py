@@ -18,7 +18,7 @@ import statistics
 import subprocess
 import sys
 
-from benchmarks.common import print_table, quick_parser, save_results
+from benchmarks.common import print_table, quick_parser, save_results, seconds_bars
 
 #: The child's work: build and warm up the layers, print the seconds as JSON. ``{plain}``: skip tdp's front-end step.
 CHILD = """
@@ -46,17 +46,10 @@ def warm_up_s(plain: bool, nodes: bool) -> float:
 
 
 def figure(rows: list[dict], path) -> None:
-    from tdp.plot import pyplot, save_figure
-
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(5, 2.6))
-    ax.barh([r["variant"] for r in rows], [r["seconds"] for r in rows], color=["tab:blue", "0.6"])
-    for y, r in enumerate(rows):
-        ax.text(r["seconds"], y, f" {r['seconds']:.1f} s", va="center", fontsize=8)
-    ax.set_xlabel("engine built and warmed up in a fresh process (s)")
     ratio = statistics.median(ours / theirs for ours, theirs in zip(rows[0]["runs"], rows[1]["runs"]))
-    ax.set_title(f"Taichi's cache warm; tdp / Taichi's front end {ratio:.2f}x (median of the pairs)", fontsize=9)
-    save_figure(fig, path)
+    seconds_bars(path, [r["variant"] for r in rows], [r["seconds"] for r in rows], ["tab:blue", "0.6"],
+                 "engine built and warmed up in a fresh process (s)",
+                 f"Taichi's cache warm; tdp / Taichi's front end {ratio:.2f}x (median of the pairs)")
 
 
 def main() -> None:

@@ -17,7 +17,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from benchmarks.common import SPECS, print_table, quick_parser, save_results
+from benchmarks.common import SPECS, print_table, quick_parser, save_results, seconds_bars
 from tdp.sweep import TIMED, load_spec, run_sweep
 from tdp.sweep.report import tidy
 
@@ -31,16 +31,9 @@ def timed_sweep(spec, folder: Path, **backend) -> tuple[float, list[dict]]:
 
 
 def figure(rows: list[dict], path) -> None:
-    from tdp.plot import pyplot, save_figure
-
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(5, 3.2))
-    ax.barh([r["backend"] for r in rows], [r["seconds"] for r in rows], color=["0.6", "tab:blue"])
-    for y, r in enumerate(rows):
-        ax.text(r["seconds"], y, f" {r['seconds']:.0f} s", va="center", fontsize=8)
-    ax.set_xlabel(f"wall time of {rows[0]['episodes']} episodes (s)")
-    ax.set_title(f"local cluster: {rows[0]['seconds'] / rows[1]['seconds']:.2f}x faster", fontsize=9)
-    save_figure(fig, path)
+    seconds_bars(path, [r["backend"] for r in rows], [r["seconds"] for r in rows], ["0.6", "tab:blue"],
+                 f"wall time of {rows[0]['episodes']} episodes (s)",
+                 f"local cluster: {rows[0]['seconds'] / rows[1]['seconds']:.2f}x faster", digits=0)
 
 
 def main() -> None:
