@@ -31,7 +31,7 @@ def save_episode_animation(scenario: Scenario, episodes: list[Episode], out: str
     """Write an animated GIF at ``out`` (and an MP4 beside it where ffmpeg exists) of ``episodes`` side by side,
     a frame per tick (every n-th tick beyond MAX_FRAMES, and always the last); returns the files written."""
     plt = pyplot()
-    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
+    from matplotlib.animation import FFMpegWriter, PillowWriter
 
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -40,6 +40,7 @@ def save_episode_animation(scenario: Scenario, episodes: list[Episode], out: str
     fig, axes = plt.subplots(1, len(episodes), figsize=(width, 4.6), squeeze=False)
     panels = [_Panel(ax, scenario, episode) for ax, episode in zip(axes[0], episodes)]
     fig.tight_layout()
+    fig.set_layout_engine(None)  # laid out once: with tight_layout's engine left set, each frame drew twice
 
     def frame(tick: int):
         if progress and tick % 100 == 0:
@@ -47,14 +48,23 @@ def save_episode_animation(scenario: Scenario, episodes: list[Episode], out: str
         return [artist for panel in panels for artist in panel.show(tick)]
 
     step = -(-(ticks + 1) // MAX_FRAMES)
-    animation = FuncAnimation(fig, frame, frames=sorted(set(range(0, ticks + 1, step)) | {ticks}), blit=False)
+    frames = sorted(set(range(0, ticks + 1, step)) | {ticks})
     written = [out]
-    animation.save(out, writer=PillowWriter(fps=fps), dpi=80)
+    _record(fig, frames, frame, PillowWriter(fps=fps), out, dpi=80)
     if shutil.which("ffmpeg"):
-        animation.save(out.with_suffix(".mp4"), writer=FFMpegWriter(fps=fps), dpi=100)
+        _record(fig, frames, frame, FFMpegWriter(fps=fps), out.with_suffix(".mp4"), dpi=100)
         written.append(out.with_suffix(".mp4"))
     plt.close(fig)
     return written
+
+
+def _record(fig, frames: list[int], show, writer, path: Path, dpi: int) -> None:
+    """Each of ``frames`` shown by ``show(tick)`` and grabbed by ``writer`` into ``path``: one drawing of the
+    figure a frame (matplotlib's FuncAnimation drew each frame twice more, for a screen there is none of)."""
+    with writer.saving(fig, path, dpi):
+        for tick in frames:
+            show(tick)
+            writer.grab_frame()
 
 
 class _Panel:
