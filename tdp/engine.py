@@ -2582,10 +2582,9 @@ def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
     stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs - closed over as
-    constants, made by one factory per phase (iterate,
-    settle, search or fill, set up, edit, read) and named on this object. The decorator that makes each kernel also records
-    it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them with
-    :func:`_kernels_for`, which caches one set per spec.
+    constants, made by one factory per phase (iterate, settle, search or fill, set up, edit, read) and named on this
+    object. The decorator that makes each kernel also records it in :attr:`all`, which :meth:`_Layers.warm_up`
+    walks, so no kernel escapes the warm-up. Build them with :func:`_kernels_for`, which caches one set per spec.
 
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
     ``keys``, ``queue``, ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells;

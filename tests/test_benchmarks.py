@@ -1,9 +1,9 @@
 """Each benchmark script runs in its --quick form and writes its JSON and figure (so the scripts keep working).
 
 The smoke runs take about seven minutes of one core (each process parses and loads the kernels it uses again),
-and the rest of the suite leaves most of the second core idle (it is mostly Python on the calling thread): so once the suite is collected, ``conftest.py`` moves these tests to the
-end and starts the runs, one at a time, longest first, in a background thread; each test waits for its script's.
-Their figures are not timings that matter."""
+and the rest of the suite leaves most of the second core idle (it is mostly Python on the calling thread): so once
+the suite is collected, ``conftest.py`` moves these tests to the end and starts the runs, one at a time, longest
+first, in a background thread; each test waits for its script's. Their figures are not timings that matter."""
 import json
 import subprocess
 import sys
