@@ -45,8 +45,7 @@ def warm_up_s(plain: bool, nodes: bool) -> float:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
-def figure(rows: list[dict], path) -> None:
-    ratio = statistics.median(ours / theirs for ours, theirs in zip(rows[0]["runs"], rows[1]["runs"]))
+def figure(rows: list[dict], ratio: float, path) -> None:
     seconds_bars(path, [r["variant"] for r in rows], [r["seconds"] for r in rows], ["tab:blue", "0.6"],
                  "engine built and warmed up in a fresh process (s)",
                  f"Taichi's cache warm; tdp / Taichi's front end {ratio:.2f}x (median of the pairs)")
@@ -63,14 +62,14 @@ def main() -> None:
     for _ in range(repeats):
         for name, plain in VARIANTS.items():
             times[name].append(warm_up_s(plain, nodes))
-    ratios = [ours / theirs for ours, theirs in zip(times["tdp"], times["Taichi's front end"])]
+    ratio = statistics.median(ours / theirs for ours, theirs in zip(times["tdp"], times["Taichi's front end"]))
     rows = [{"variant": name, "seconds": statistics.median(values), "runs": values} for name, values in times.items()]
     print_table(["variant", "layers", "repeats", "median s"],
                 [[r["variant"], "goal and nodes" if nodes else "goal", str(repeats), f"{r['seconds']:.2f}"]
                  for r in rows])
-    print(f"tdp / Taichi's front end: {statistics.median(ratios):.2f}x (median of the pairs)")
-    save_results("startup-quick" if args.quick else "startup",
-                 {"nodes": nodes, "rows": rows, "ratio": statistics.median(ratios)}, lambda png: figure(rows, png))
+    print(f"tdp / Taichi's front end: {ratio:.2f}x (median of the pairs)")
+    save_results("startup-quick" if args.quick else "startup", {"nodes": nodes, "rows": rows, "ratio": ratio},
+                 lambda png: figure(rows, ratio, png))
 
 
 if __name__ == "__main__":
