@@ -25,8 +25,8 @@ class Journal:
     Reading it back skips a line torn by a kill; a later line for a key replaces an earlier one (a rerun's result
     replaces a recorded error)."""
 
-    def __init__(self, path: Path, log: TextIO = sys.stderr):
-        self.path, self.log = Path(path), log
+    def __init__(self, path: Path, log: TextIO | None = None):
+        self.path, self.log = Path(path), sys.stderr if log is None else log
         self.rows: dict[str, dict] = {}
         self.errors: dict[str, str] = {}
         if self.path.exists():
@@ -118,17 +118,19 @@ def _clock(seconds: float) -> str:
 
 
 def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int | None = None,
-              serial: bool = False, log: TextIO = sys.stderr) -> list[dict]:
+              serial: bool = False, log: TextIO | None = None) -> list[dict]:
     """Run every episode of ``spec`` that the journal in ``out`` does not hold yet; return all of the spec's rows
     that are done, in the spec's order.
 
     ``serial``: one after another in this process. Otherwise on Dask distributed: the cluster at ``scheduler``
     (an address such as ``tcp://10.0.0.5:8786``), or a local cluster of ``workers`` processes (default: one per
-    core), each running one episode at a time with cores // workers Taichi threads.
+    core), each running one episode at a time with cores // workers Taichi threads. Progress, the episodes a
+    journal already holds and errors go to ``log`` (default: ``sys.stderr`` as it is at the call).
 
     Raises:
         ValueError: ``out`` is no path (a str or a pathlib.Path).
     """
+    log = sys.stderr if log is None else log
     journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)
     episodes = spec.episodes()
     todo = [e for e in episodes if e.key not in journal.rows]
