@@ -38,4 +38,4 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.startup
 
 clean:
-	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick
+	rm -rf $(VENV) demo-output benchmarks/results/*-quick.* benchmarks/results/sweeps/*-quick benchmarks/results/smoke-quick

@@ -1,10 +1,12 @@
 """Each benchmark script runs in its --quick form and writes its JSON and figure (so the scripts keep working).
 
-The smoke runs take about seven minutes of one core (each process parses and loads the kernels it uses again),
-and the rest of the suite leaves most of the second core idle (it is mostly Python on the calling thread): so once
-the suite is collected, ``conftest.py`` moves these tests to the end and starts the runs, one at a time, longest
-first, in a background thread; each test waits for its script's. Their figures are not timings that matter."""
+The smoke runs go one after another in one process (``benchmarks.smoke``: a fresh process per script parsed and
+loaded its kernels again, about seven minutes of one core for the fourteen), and the rest of the suite leaves most
+of the second core idle (it is mostly Python on the calling thread): so once the suite is collected, ``conftest.py``
+moves these tests to the end and starts that process in the background; each test reads its script's outcome once
+it has ended. Their figures are not timings that matter."""
 import json
+import shutil
 import subprocess
 import sys
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -12,52 +14,62 @@ from pathlib import Path
 
 import pytest
 
+from benchmarks.smoke import SCRIPTS
+
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results"
-#: Each script and the key its JSON must fill, the longest runs first (convergence 57 s ... ab 14 s on the 2-core VM,
-#: warm cache, the twenty-eighth session).
-SCRIPTS = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
-           "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
-           "kernel": "results", "equal_time": "summary", "startup": "rows", "ab": "rows"}
+OUTCOMES = RESULTS / "smoke-quick"
+#: The key each script's JSON must fill.
+FILLED = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
+          "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
+          "kernel": "results", "equal_time": "summary", "startup": "rows", "ab": "rows"}
+#: The smoke process's limit, for a run that hangs: on a machine whose Taichi cache is cold, it compiles every kernel
+#: the scripts use beside the suite's own process (sweep, backends and predict took over 300 s each so on the 2-core
+#: VM at half speed, the twenty-fourth session, as processes of their own; all fourteen seven minutes warm).
+SMOKE_RUN_S = 3600
 
 
-#: A smoke run's limit, for a run that hangs: on a machine whose Taichi cache is cold, the first runs compile every
-#: kernel they use beside the suite's own process (sweep, backends and predict took over 300 s each so on the 2-core VM
-#: at half speed, the twenty-fourth session; 35 s at most warm).
-SMOKE_RUN_S = 1200
-
-
-def _smoke_run(script: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", f"benchmarks.{script}", "--quick"], cwd=ROOT, capture_output=True,
-                          text=True, timeout=SMOKE_RUN_S)
+def _smoke_run() -> subprocess.CompletedProcess:
+    shutil.rmtree(OUTCOMES, ignore_errors=True)  # no outcome of an earlier run is read as this one's
+    return subprocess.run([sys.executable, "-m", "benchmarks.smoke", "--out", str(OUTCOMES)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=SMOKE_RUN_S)
 
 
 class SmokeRuns:
-    """Every script's --quick run, started once (:meth:`start`) in one background thread, longest first."""
+    """Every script's --quick run, in one process (``benchmarks.smoke``) started once (:meth:`start`) from a
+    background thread."""
 
     def __init__(self):
-        self._runs: dict[str, Future] = {}
+        self._run: Future | None = None
 
     def start(self) -> None:
-        if not self._runs:
+        if self._run is None:
             pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="smoke-run")
-            self._runs = {script: pool.submit(_smoke_run, script) for script in SCRIPTS}
+            self._run = pool.submit(_smoke_run)
             pool.shutdown(wait=False)
 
-    def result(self, script: str) -> subprocess.CompletedProcess:
+    def result(self, script: str) -> dict:
+        """``script``'s outcome (``benchmarks.smoke``'s JSON) once the smoke process has ended."""
         self.start()  # a run of this module alone, without conftest's start
-        return self._runs[script].result()
+        done = self._run.result()
+        outcome = OUTCOMES / f"{script}.json"
+        assert outcome.exists(), f"no outcome for {script}; the smoke process said:\n{done.stderr[-2000:]}"
+        return json.loads(outcome.read_text())
 
 
 SMOKE_RUNS = SmokeRuns()
 
 
+def test_every_script_has_a_smoke_check():
+    assert set(FILLED) == set(SCRIPTS)
+
+
 @pytest.mark.parametrize("script", SCRIPTS)
 def test_quick_benchmark_runs(script):
-    done = SMOKE_RUNS.result(script)
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert "|" in done.stdout  # the table
+    outcome = SMOKE_RUNS.result(script)
+    assert outcome["status"] == 0, outcome["error"][-2000:]
+    assert "|" in outcome["stdout"]  # the table
     payload = json.loads((RESULTS / f"{script}-quick.json").read_text())
-    assert payload[SCRIPTS[script]] and payload["machine"]["cores"] >= 1
+    assert payload[FILLED[script]] and payload["machine"]["cores"] >= 1
     figure = RESULTS / ("paper-curves-quick.png" if script == "paper" else f"{script}-quick.png")
     assert figure.stat().st_size > 1000

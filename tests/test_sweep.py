@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 
+from tdp.__main__ import main as tdp_command
 from tdp.sweep import JOURNAL, TIMED, Journal, load_spec, run_sweep, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -164,9 +165,9 @@ def test_two_worlds_on_one_map_get_their_own_names_and_oracles(tmp_path):
     assert lengths == pytest.approx({"m-0#1": 11.0, "m-0#2": 11.0 * 2 ** 0.5})
 
 
-def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
+def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path, capsys):
     """Killed after three episodes and run again: the rest run, the journal's first lines kept. One planner kind,
-    so that each of the two processes compiles one set of kernels."""
+    so that the killed process compiles one set of kernels; the command's main() runs again in this process."""
     spec = spec_file(tmp_path, "worlds: [{family: crossing, size: 60, seeds: {first: 0, count: 4}}]\n"
                                "planners: [{planner: exact}]\n")
     out = tmp_path / "out"
@@ -183,9 +184,8 @@ def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
     before = journal.read_text().splitlines()
     total = len(load_spec(spec).episodes())
     assert 3 <= len(before) < total, "the sweep was not caught halfway"
-    done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert f"{len(before)} of {total} episodes done before, skipped" in done.stderr
+    assert tdp_command(command[3:]) == 0
+    assert f"{len(before)} of {total} episodes done before, skipped" in capsys.readouterr().err
     after = journal.read_text().splitlines()
     assert after[:len(before)] == before  # finished episodes were kept, not redone
     keys = [json.loads(line)["key"] for line in after]
@@ -193,24 +193,20 @@ def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path):
     assert len(untimed(out / "episodes.csv")) == total
 
 
-def test_local_dask_cluster_gives_the_serial_table(tmp_path):
-    pytest.importorskip("dask.distributed")
+def test_a_sweep_on_an_existing_dask_scheduler_gives_the_serial_table(tmp_path):
+    """On a cluster the sweep did not start (its scheduler's address); a local cluster of the sweep's own
+    (``workers``) is the sweep benchmark's smoke run (tests/test_benchmarks.py), which compares the tables too."""
+    distributed = pytest.importorskip("dask.distributed")
     spec = load_spec(spec_file(tmp_path, SMALL))
     serial, cluster = tmp_path / "serial", tmp_path / "cluster"
-    for out, options in ((serial, {"serial": True}), (cluster, {"workers": 2})):
-        out.mkdir()
-        write_report(spec, run_sweep(spec, out, log=io.StringIO(), **options), out)
+    serial.mkdir()
+    cluster.mkdir()
+    write_report(spec, run_sweep(spec, serial, serial=True, log=io.StringIO()), serial)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as local:
+        rows = run_sweep(spec, cluster, scheduler=local.scheduler_address, log=io.StringIO())
+    write_report(spec, rows, cluster)
     assert untimed(serial / "episodes.csv") == untimed(cluster / "episodes.csv")
     assert len(untimed(cluster / "episodes.csv")) == len(spec.episodes())
-
-
-def test_sweep_runs_on_an_existing_dask_scheduler(tmp_path):
-    distributed = pytest.importorskip("dask.distributed")
-    spec = load_spec(spec_file(tmp_path, "worlds: [{family: clearing, size: 60}]\n"
-                                         "planners: [{planner: plain-dp, updates_per_move: 2}]\n"))
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
-        rows = run_sweep(spec, tmp_path, scheduler=cluster.scheduler_address, log=io.StringIO())
-    assert [r["planner"] for r in rows] == ["oracle", "plain-dp"] and all(r["reached"] for r in rows)
 
 
 def test_exact_planner_entries_sweep_budgets_and_match_the_oracle_unbudgeted(tmp_path):

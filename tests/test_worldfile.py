@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 import tdp
+from sim.__main__ import main as sim_command
+from tdp.__main__ import main as tdp_command
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "turtlebot3-world.yaml"
@@ -93,12 +95,12 @@ def run(*args):
 
 
 def test_the_ros_world_runs_at_grid_level_and_in_pybullet_with_one_command_each(tmp_path):
-    done = run("-m", "tdp", "run", "--world", str(EXAMPLE), "--out", str(tmp_path / "grid"))
-    assert done.returncode == 0, done.stderr[-2000:]
+    """Each command's main() in this process (a fresh one would load every kernel again; the entry points
+    themselves run in the command-line tests of test_inputs and test_sim)."""
+    assert tdp_command(["run", "--world", str(EXAMPLE), "--out", str(tmp_path / "grid")]) == 0
     grid = json.loads((tmp_path / "grid" / "metrics.json").read_text())
     assert grid["reached"] and grid["collisions"] == 0 and grid["hits"] == 0
-    done = run("-m", "sim", "run", "--world", str(EXAMPLE), "--out", str(tmp_path / "sim"))
-    assert done.returncode == 0, done.stderr[-2000:]
+    assert sim_command(["run", "--world", str(EXAMPLE), "--out", str(tmp_path / "sim")]) == 0
     physics = json.loads((tmp_path / "sim" / "metrics.json").read_text())
     assert physics["reached"] and physics["contacts"] == 0 and physics["sim"]["cell_m"] == 0.05
 
@@ -118,9 +120,9 @@ def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tm
     plugged = tdp.DistanceField(tdp.GridMap(world.occupancy(world.change_tick)), world.goal)
     plugged.converge()
     assert np.isfinite(plugged.distance(world.start))
-    done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--start", "1", "3", "--goal", "47", "46",
-               "--boxes", "4", "--seed", "1", "--blockage", "--out", str(tmp_path))
-    assert done.returncode == 0, done.stderr[-2000:]
+    arena = str(ROOT / "tests" / "data" / "arena.map")
+    assert tdp_command(["run", "--map", arena, "--start", "1", "3", "--goal", "47", "46", "--boxes", "4", "--seed",
+                        "1", "--blockage", "--out", str(tmp_path)]) == 0
     assert json.loads((tmp_path / "metrics.json").read_text())["reached"]
     done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--out", str(tmp_path))
     assert done.returncode == 2 and "--map needs --start" in done.stderr
