@@ -194,15 +194,18 @@ def test_killed_sweep_resumes_without_redoing_finished_episodes(tmp_path, capsys
 
 
 def test_a_sweep_on_an_existing_dask_scheduler_gives_the_serial_table(tmp_path):
-    """On a cluster the sweep did not start (its scheduler's address); a local cluster of the sweep's own
-    (``workers``) is the sweep benchmark's smoke run (tests/test_benchmarks.py), which compares the tables too."""
+    """On a cluster the sweep did not start (its scheduler's address), whose worker is a thread of this process
+    (a worker process would load every kernel again: 39 s against 5); a local cluster of the sweep's own, with
+    worker processes (``workers``), is the sweep benchmark's smoke run (tests/test_benchmarks.py), which compares
+    the tables too."""
     distributed = pytest.importorskip("dask.distributed")
     spec = load_spec(spec_file(tmp_path, SMALL))
     serial, cluster = tmp_path / "serial", tmp_path / "cluster"
     serial.mkdir()
     cluster.mkdir()
     write_report(spec, run_sweep(spec, serial, serial=True, log=io.StringIO()), serial)
-    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as local:
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as local:
         rows = run_sweep(spec, cluster, scheduler=local.scheduler_address, log=io.StringIO())
     write_report(spec, rows, cluster)
     assert untimed(serial / "episodes.csv") == untimed(cluster / "episodes.csv")
