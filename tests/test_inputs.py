@@ -14,6 +14,7 @@ import pytest
 from PIL import Image
 
 import tdp
+from tdp.__main__ import main as tdp_command
 from tdp.cli import output_folder, save_json
 from tdp.sweep import load_spec, run_sweep
 
@@ -231,11 +232,14 @@ def test_results_are_strict_json_with_null_for_numbers_that_are_not_finite(tmp_p
     assert strict == {"ratio": None, "clearance": None, "runs": [{"x": None}], "ok": 1.5}
 
 
-def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_of_them_is_an_error(tmp_path):
-    ros = ["tdp/maps/turtlebot3_world/map.yaml", "--start", "192", "161", "--goal", "175", "238"]
-    done = cli("-m", "tdp", "plan", *ros, "--cost-scaling-factor", "3", "--inflation-radius", "0.6",
-               "--out", str(tmp_path / "plan"))
-    assert done.returncode == 0 and "cost from (192, 161) to (175, 238)" in done.stdout
+def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_of_them_is_an_error(tmp_path, capsys):
+    """The plan runs in this process (a fresh one would load every kernel again); the error through the entry
+    point."""
+    ros = [str(ROOT / "tdp" / "maps" / "turtlebot3_world" / "map.yaml"), "--start", "192", "161", "--goal", "175",
+           "238"]
+    assert tdp_command(["plan", *ros, "--cost-scaling-factor", "3", "--inflation-radius", "0.6",
+                        "--out", str(tmp_path / "plan")]) == 0
+    assert "cost from (192, 161) to (175, 238)" in capsys.readouterr().out
     done = cli("-m", "tdp", "run", "--map", *ros, "--boxes", "0", "--cost-scaling-factor", "3", "--out", str(tmp_path))
     assert done.returncode == 2 and done.stderr.strip() == ("error: --cost-scaling-factor and --inflation-radius go "
                                                             "together (nav2's inflation layer)")
