@@ -5,7 +5,7 @@
 Every process that plans pays for its kernels again, offline cache or not: Taichi parses each kernel's Python (the
 cache is keyed by the IR it builds) and builds the LLVM code it finds for the machine. Each repeat starts, in
 turn, a fresh Python process per variant and times, inside it, ``Engine(...)`` and ``warm_up()`` for the goal layer
-and for node windows (the default stencil, 2 threads): *tdp*, the engine as it is (``init_taichi`` memoises two
+and for node windows (the default stencil, 2 threads): *tdp*, the engine as it is (``init_taichi`` memoises three
 steps of Taichi 1.7's front end, ARCHITECTURE §7), and *Taichi's front end*, the same with that step skipped. One
 untimed run of each first (Taichi's cache warm for both). Prints the median seconds of each and the median of the
 per-repeat ratios (tdp / Taichi's): each pair runs back to back, so the VM's drift stays out of the ratio.

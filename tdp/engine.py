@@ -403,19 +403,41 @@ def _memoised_source_lines(source_lines):
     return lines
 
 
+def _memoised_position(position):
+    """Taichi 1.7's ``ASTTransformerContext.get_pos_info`` (``position``: an AST node's file, line and function, and
+    its source line with a caret under it, the debug message of each IR statement the node makes) memoised for a
+    node on one line by all that it reads there: the file, the line's number and text, the function's name and the
+    node's columns. A node over several lines is left to ``position``."""
+    cached = {}
+
+    @functools.wraps(position)
+    def get_pos_info(context, node) -> str:
+        if node.lineno != node.end_lineno:
+            return position(context, node)
+        key = (context.file, node.lineno + context.lineno_offset, context.func.func.__name__,
+               context.src[node.lineno - 1], context.indent + node.col_offset, context.indent + node.end_col_offset)
+        info = cached.get(key)
+        if info is None:
+            info = cached[key] = position(context, node)
+        return info
+    return get_pos_info
+
+
 def _quicken_taichi_front_end() -> None:
-    """Memoise two pure steps that Taichi 1.7's front end repeats for every kernel it compiles and every ti.func
+    """Memoise three pure steps that Taichi 1.7's front end repeats for every kernel it compiles and every ti.func
     call it inlines - about 2,300 of them for the exact planner's 16 kernels, 10.8 s of a 19 s ``tdp run`` with
     the offline cache warm (it caches the compiled code, keyed by the IR these steps build): reading a function's
-    source lines (``inspect.getsourcelines`` tokenises its block each time) and wrapping each AST node's source
-    line at 80 columns for its debug message (a ``TextWrapper`` per node). The strings out are the same; another
-    Taichi version is left as it is."""
+    source lines (``inspect.getsourcelines`` tokenises its block each time), each AST node's debug message (its
+    source line with a caret under it) and, for nodes over several lines, wrapping each line at 80 columns (a
+    ``TextWrapper`` per node). The strings out are the same; another Taichi version is left as it is."""
     from taichi.lang import kernel_impl
     from taichi.lang.ast import ast_transformer_utils
 
     if _DIRECT_TAICHI and ast_transformer_utils.TextWrapper is textwrap.TextWrapper:
         ast_transformer_utils.TextWrapper = _MemoisedWrapper
         kernel_impl.getsourcelines = _memoised_source_lines(kernel_impl.getsourcelines)
+        context = ast_transformer_utils.ASTTransformerContext
+        context.get_pos_info = _memoised_position(context.get_pos_info)
 
 
 def init_taichi() -> None:

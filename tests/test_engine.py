@@ -235,11 +235,14 @@ def test_node_layers_of_new_caps_compile_no_fill_kernel():
 
 
 def test_the_quickened_taichi_front_end_reads_and_wraps_as_taichi_does():
-    """The engine memoises two steps of Taichi 1.7's front end (a function's source lines, each AST node's line
-    wrapped at 80 columns): what they return is what Taichi's own steps return, and a caller's changes to a result
-    do not reach the next."""
+    """The engine memoises three steps of Taichi 1.7's front end (a function's source lines, each AST node's debug
+    message, a line wrapped at 80 columns): what they return is what Taichi's own steps return, for every node of a
+    function's source and again from the memo, in another file or at another line too, and a caller's changes to
+    a result do not reach the next."""
+    import ast
     import inspect
     import textwrap
+    from types import SimpleNamespace
 
     import taichi as ti
     from taichi.lang import _wrap_inspect, kernel_impl
@@ -260,6 +263,18 @@ def test_the_quickened_taichi_front_end_reads_and_wraps_as_taichi_does():
     assert (source, first) == _wrap_inspect.getsourcelines(function)
     source.clear()
     assert kernel_impl.getsourcelines(function) == _wrap_inspect.getsourcelines(function)
+    position = ast_transformer_utils.ASTTransformerContext.get_pos_info
+    taichis = position.__wrapped__
+    source, first = _wrap_inspect.getsourcelines(function)
+    source = [textwrap.fill(line, tabsize=4, width=9999) for line in source]  # as Taichi's _get_tree_and_ctx
+    nodes = [node for node in ast.walk(ast.parse(textwrap.dedent("\n".join(source))))
+             if isinstance(node, (ast.stmt, ast.expr))]
+    assert len(nodes) > 100 and any(node.lineno != node.end_lineno for node in nodes)
+    for file, offset in (("engine.py", first - 1), ("engine.py", first - 1), ("other.py", first - 1),
+                         ("engine.py", first + 4)):
+        context = SimpleNamespace(file=file, lineno_offset=offset, func=SimpleNamespace(func=function), src=source,
+                                  indent=len(source[0]) - len(source[0].lstrip()))
+        assert [position(context, node) for node in nodes] == [taichis(context, node) for node in nodes]
 
 
 @pytest.mark.parametrize("serial_tiles", [0, 10**6])
