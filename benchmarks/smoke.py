@@ -40,9 +40,9 @@ def run_script(script: str) -> dict:
     try:
         with contextlib.redirect_stdout(output):
             importlib.import_module(f"benchmarks.{script}").main()
-    except SystemExit as exit_:
-        status = exit_.code if isinstance(exit_.code, int) else 1
-        error = "" if exit_.code in (0, None) else str(exit_.code)
+    except SystemExit as exit_:  # sys.exit(): None or 0 a success, another number its status, a message 1
+        code = 0 if exit_.code is None else exit_.code
+        status, error = (code, "") if isinstance(code, int) else (1, str(code))
     except Exception:  # a script's failure is its result here; the next script still runs
         status, error = 1, traceback.format_exc()
     finally:

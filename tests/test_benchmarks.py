@@ -11,10 +11,11 @@ import subprocess
 import sys
 from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
-from benchmarks.smoke import SCRIPTS
+from benchmarks.smoke import SCRIPTS, run_script
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results"
@@ -66,6 +67,22 @@ def test_every_script_has_a_smoke_check():
     """Every benchmark module with a main() (but the smoke runner) is a script that the smoke process runs."""
     scripts = {path.stem for path in (ROOT / "benchmarks").glob("*.py") if "\ndef main(" in path.read_text()}
     assert set(FILLED) == set(SCRIPTS) == scripts - {"smoke"}
+
+
+@pytest.mark.parametrize("ends, status, error", [
+    (lambda: None, 0, ""), (lambda: sys.exit(), 0, ""), (lambda: sys.exit(3), 3, ""),
+    (lambda: sys.exit("no map"), 1, "no map"), (lambda: 1 / 0, 1, "ZeroDivisionError")])
+def test_the_smoke_runner_keeps_each_scripts_output_and_outcome(monkeypatch, capsys, ends, status, error):
+    """A script's table and its end - returned, sys.exit with nothing, a number or a message, an exception - as
+    benchmarks.smoke records them, its command line as ``python -m benchmarks.SCRIPT --quick`` gives it."""
+    def main():
+        print(f"| {' '.join(sys.argv)} |")
+        ends()
+    monkeypatch.setitem(sys.modules, "benchmarks.fake", SimpleNamespace(main=main))
+    outcome = run_script("fake")
+    assert outcome["status"] == status and error in outcome["error"] and (error or not outcome["error"])
+    assert outcome["stdout"] == "| benchmarks.fake --quick |\n" and capsys.readouterr().out == ""
+    assert sys.argv[0] != "benchmarks.fake"  # put back
 
 
 @pytest.mark.parametrize("script", SCRIPTS)
