@@ -26,8 +26,8 @@ FILLED = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs
           "kernel": "results", "equal_time": "summary", "startup": "rows", "ab": "rows"}
 #: The smoke process's limit, for a run that hangs: on a machine whose Taichi cache is cold, it compiles every kernel
 #: the scripts use beside the suite's own process (sweep, backends and predict took over 300 s each so on the 2-core
-#: VM at half speed, the twenty-fourth session, as processes of their own; all fourteen 315-355 s warm in one), so
-#: the limit stays under CI's 90 minutes with room for nothing else.
+#: VM at half speed, the twenty-fourth session, as processes of their own; all fourteen 315-355 s warm in one): the
+#: limit is near CI's 90 minutes, so that a hang still ends as a failed test before CI stops the run.
 SMOKE_RUN_S = 80 * 60
 
 
