@@ -4,12 +4,12 @@
 
 Each script's ``main()`` runs as ``python -m benchmarks.SCRIPT --quick`` runs it, and writes its JSON and figure to
 results/ as that would; its printed output and its outcome go to DIR/SCRIPT.json (default DIR:
-results/smoke-quick): ``status`` (0, the exit status it raised, or 1 for an exception), ``stdout``, ``error`` (the
-traceback, or what it raised) and ``seconds``. One process for all of them because a fresh one parses and loads
-again every Taichi kernel it uses (about ten seconds of each run on the 2-core VM; ``benchmarks.startup``): the
-fourteen runs took about seven minutes of one core as fourteen processes. The scripts' own children (the kernel's
-and the backends' workers, the start-up's fresh processes, the sweep's Dask workers) still start as they do.
-Prints one line per script as it ends and exits with 1 if any failed.
+results/smoke-quick): ``status`` (0; the number it exited with; 1 for an exception or an exit with a message),
+``stdout``, ``error`` (the traceback, or the message) and ``seconds``. One process for all of them because a fresh
+one parses and loads again every Taichi kernel it uses (about ten seconds of each run on the 2-core VM;
+``benchmarks.startup``): the fourteen runs took about seven minutes of one core as fourteen processes. The
+scripts' own children (the kernel's and the backends' workers, the start-up's fresh processes, the sweep's Dask
+workers) still start as they do. Prints one line per script as it ends and exits with 1 if any failed.
 """
 from __future__ import annotations
 
