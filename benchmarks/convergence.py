@@ -5,8 +5,9 @@
 Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each with
 goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
 (``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one
-corridor a cell wide winding row by row: ``serpentine``), goals at a corner, the centre and a random free cell; the
-MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
+corridor a cell wide winding row by row: ``serpentine``), goals at a corner, the centre and a random free cell;
+halls of 4096 x 64 and 64 x 4096 cells (random, 20 % obstacles: a long corridor or aisle), goals at the middle of an
+end, the centre and a random free cell; the MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
 world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil
 (16 neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner
 goal, turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
@@ -68,6 +69,10 @@ MAZES, QUICK_MAZES = [(256, 1), (512, 1), (512, 2), (512, 4)], [(64, 1)]
 #: Serpentines (side): one corridor a cell wide winding row by row, a search's frontier one cell all the way - where
 #: Dijkstra's heap is at its cheapest and each cell has two edges against our stencil's 16 moves.
 SERPENTINES, QUICK_SERPENTINES = [256, 512], [64]
+#: Halls (rows, cols): random maps (20 % obstacles) far longer than wide - a corridor or an aisle -, tall and wide
+#: (a row-major layout walks them differently). A ring round the goal is clipped to the hall's sides, so sealing a
+#: room there cuts the hall across and leaves most of it behind the cut.
+HALLS, QUICK_HALLS = [(4096, 64), (64, 4096)], [(512, 16)]
 MAPS, QUICK_MAPS = ["arena", "den312d", "maze512-32-0", "random512-10-0", "8room_000"], ["arena"]
 GOALS_PER_MAP = 3
 #: Every case runs on the default stencil (16 neighbours, no corner cutting); these maps run again on each of
@@ -120,6 +125,21 @@ def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray,
         grid[goal] = False
         dense = "" if density == 0.2 else f"{round(100 * density)} % "
         cases.append((f"random {size}² {dense}{place}", grid, goal))
+    return cases
+
+
+def hall_cases(rows: int, cols: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A hall (``HALLS``: random, 20 % obstacles) and its goals: the middle of one end, the centre, a random free
+    cell."""
+    occupied = np.random.default_rng(rows * cols + rows).random((rows, cols)) < 0.2
+    free = np.argwhere(~occupied)
+    goals = {"end": (0, cols // 2) if rows > cols else (rows // 2, 0), "centre": (rows // 2, cols // 2),
+             "random": tuple(int(v) for v in free[np.random.default_rng(rows + 1).integers(len(free))])}
+    cases = []
+    for place, goal in goals.items():
+        grid = occupied.copy()
+        grid[goal] = False
+        cases.append((f"hall {rows}x{cols} {place}", grid, goal))
     return cases
 
 
@@ -479,15 +499,17 @@ def main() -> None:
                         help="only the cases whose name holds one of these (no doors; saved as convergence-only)")
     args = parser.parse_args()
     if args.quick:
-        sizes, dense, mazes, serpentines, maps, stencil_maps = (QUICK_SIZES, QUICK_DENSE, QUICK_MAZES,
-                                                                QUICK_SERPENTINES, QUICK_MAPS, QUICK_STENCIL_MAPS)
+        sizes, dense, mazes, serpentines, halls, maps, stencil_maps = (
+            QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_SERPENTINES, QUICK_HALLS, QUICK_MAPS, QUICK_STENCIL_MAPS)
     else:
-        sizes, dense, mazes, serpentines, maps, stencil_maps = SIZES, DENSE, MAZES, SERPENTINES, MAPS, STENCIL_MAPS
+        sizes, dense, mazes, serpentines, halls, maps, stencil_maps = (
+            SIZES, DENSE, MAZES, SERPENTINES, HALLS, MAPS, STENCIL_MAPS)
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
     cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
     cases += [case for size in serpentines for case in serpentine_cases(size)]
+    cases += [case for rows, cols in halls for case in hall_cases(rows, cols)]
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
         cases += ros_cases()
@@ -536,7 +558,7 @@ def summarise(results: list[dict], closing: list[dict]) -> dict:
     CONVERGE_LARGE cells or more), the worst to tcod's, the median repair ratio (the edit and its converge) for
     local changes (box, wall) and the worst for any change, the converge's alone for both; for local changes the
     median share of the reachable cells a repair changes, its converge's time per changed cell and a from-scratch
-    converge's per reached cell (a repair's work follows the cells it changes); and the slowest 9-cell box repair on
+    converge's per reached cell (a repair's work follows the cells it changes), and the median ``floor``; and the slowest 9-cell box repair on
     a 256² map (its converge, with its edit, and the two back to back with no other field's converge between); the
     worst door (``doors``: ``closing``) among any change's."""
     repairs = [q for r in results for q in r.get("repairs", [])] + closing
@@ -551,6 +573,7 @@ def summarise(results: list[dict], closing: list[dict]) -> dict:
             "local_converge_median": _median(q["converge_ratio"] for q in local),
             "local_changed_share_median": _median(q["changed"] / max(q["reached"], 1) for q in local),
             "local_ns_per_changed_median": _median(q["converge_ns_per_changed"] for q in local),
+            "local_floor_median": _median(floor(q) for q in local),
             "scratch_ns_per_reached_median": _median(q["scratch_ns_per_reached"] for q in local),
             "converge_worst": _worst(q["converge_ratio"] for q in repairs),
             "box_repair_256_worst_ms": max((q["repair_ms"] for q in boxes_256), default=float("nan")),
@@ -558,6 +581,13 @@ def summarise(results: list[dict], closing: list[dict]) -> dict:
                                                     default=float("nan")),
             "box_back_to_back_256_worst_ms": max((q["back_to_back_ms"] for q in boxes_256), default=float("nan")),
             "all_equal": all(r["equal"] for r in results) and all(q["equal"] for q in repairs)}
+
+
+def floor(repair: dict) -> float:
+    """The ratio a repair would have if its converge cost one cell of a from-scratch converge for each cell it
+    changed, its edit as timed: a changed cell must be written and its neighbours read, as a search's is, so no repair
+    that visits each changed cell costs much less."""
+    return (repair["changed"] * repair["scratch_ns_per_reached"] * 1e-6 + repair["edit_ms"]) / repair["scratch_ms"]
 
 
 def _median(values) -> float:
