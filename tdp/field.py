@@ -17,6 +17,21 @@ def check_cap(value: float, name: str) -> float:
     return float(value)
 
 
+def _read_cells(cells) -> np.ndarray:
+    """``cells`` as numpy reads it; a list or tuple of integer pairs read column by column - each pair once, where
+    numpy's reading of nested sequences walks them twice: 418 cells 56 against 155 µs warm, 1,700 cells 0.8 against
+    1.2 ms right after a converge (RESULTS §2, the thirtieth session). Anything else, faults included, is read by
+    numpy, whose reading the caller's messages describe."""
+    if isinstance(cells, (list, tuple)) and cells:
+        try:
+            columns = np.array(tuple(zip(*cells, strict=True)))
+        except (TypeError, ValueError):  # not sequences, or of unequal lengths: numpy's reading names the fault
+            columns = None
+        if columns is not None and columns.ndim == 2 and columns.shape[0] == 2 and columns.dtype.kind in "iu":
+            return columns.T
+    return np.asarray(cells)
+
+
 def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndarray:
     """An (n, 2) int32 array of (row, col) cells, contiguous (as the engine's kernels take them), from a bool mask of
     the map's shape or a sequence of cells.
@@ -25,7 +40,7 @@ def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndar
         ValueError: a mask of another shape, anything but (row, col) integer pairs, or a cell outside the map.
     """
     try:
-        array = np.asarray(cells_or_mask)
+        array = _read_cells(cells_or_mask)
     except ValueError:  # a ragged sequence
         raise ValueError(f"{name}: expected a bool mask or (row, col) integer cells, got a ragged sequence") from None
     if array.dtype == bool:

@@ -11,11 +11,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from PIL import Image
 
 import tdp
 from tdp.__main__ import main as tdp_command
 from tdp.cli import output_folder, save_json
+from tdp.field import cells_from
 from tdp.sweep import load_spec, run_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -138,6 +141,36 @@ def test_cells_of_any_integer_array_are_read_as_their_values():
         field = tdp.DistanceField(GRID, (0, 0))
         field.set_occupied(array)
         assert sorted(map(tuple, np.argwhere(field.occupied).tolist())) == sorted(cells)
+
+
+#: What a cell's coordinate might be: small ints (in and out of the 10 x 10 map), ints past every numpy type, bools,
+#: numpy ints, floats, None.
+COORDINATE = st.one_of(st.integers(-3, 12), st.integers(-2**70, 2**70), st.booleans(),
+                       st.integers(0, 9).map(np.int16), st.floats(0, 9), st.none())
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.one_of(st.tuples(COORDINATE, COORDINATE), st.lists(st.integers(0, 9), max_size=3),
+                          st.tuples(st.integers(0, 9), st.integers(0, 9)).map(np.array)), max_size=12),
+       st.sampled_from([list, tuple]))
+def test_a_list_of_cells_reads_as_numpy_reads_it(cells, container):
+    """A list or tuple of pairs is read column by column (``field._read_cells``, faster): the cells, or the error,
+    are what numpy's own reading of it gives."""
+    cells = container(cells)
+
+    def outcome(read):
+        try:
+            return read().tolist()
+        except ValueError as error:
+            return str(error)
+
+    def as_numpy_reads_it():
+        try:
+            array = np.asarray(cells)
+        except ValueError:
+            return cells_from(GRID.shape, [(1, 2), (3,)], "set_occupied")  # numpy's ragged sequence, as it is told
+        return cells_from(GRID.shape, array, "set_occupied")
+    assert outcome(lambda: cells_from(GRID.shape, cells, "set_occupied")) == outcome(as_numpy_reads_it)
 
 
 def test_numpy_integers_are_cells():
