@@ -10,7 +10,8 @@ D* Lite (plain Python) on maps of at most DSTAR_MAX_SIDE cells a side. Worlds: t
 with a box appearing on the route on MovingAI maps (arena and den312d from tests/data, and from ../shared/data
 when present maze512-32-0, random512-10-0 and 8room_000, start and goal from their longest scenario), and nav2's
 warehouse and depot maps (inflated by 0.2 m, start and goal from the largest free region) with six shuttling
-boxes and with a box appearing. On maps of more than LARGE cells the DP planners run K = 1 and a budget of 1 ms
+boxes and with a box appearing; and two halls (HALLS: a corridor 24 cells wide and 600 long, 12 % obstacles, lying
+and standing, three boxes shuttling across it), driven end to end. On maps of more than LARGE cells the DP planners run K = 1 and a budget of 1 ms
 only (a tick costs tens of milliseconds there).
 
 Per world, the exact planner (unbudgeted: the oracle) is checked against a goal field converged fully every tick
@@ -49,6 +50,8 @@ DSTAR_MAX_SIDE = 100
 LARGE = 512 * 512
 MOVINGAI_TESTS = ("arena", "den312d")
 MOVINGAI_SHARED = ("maze512-32-0", "random512-10-0", "8room_000")
+#: Halls (rows, cols): a long corridor lying and standing, where a box crossing it sends the news along its length.
+HALLS = ((24, 600), (600, 24))
 
 
 def settings(cells: int) -> list[tuple[str, dict]]:
@@ -78,6 +81,29 @@ def worlds(quick: bool) -> list[tuple[str, tdp.Scenario]]:
     out += [("scenarios", tdp.scenarios.get(name)) for name in tdp.scenarios.names()]
     out += [("movingai", world) for world in movingai_worlds()]
     out += [("nav2", world) for world in nav2_worlds()]
+    out += [("halls", world) for world in hall_worlds()]
+    return out
+
+
+def hall_worlds() -> list[tdp.Scenario]:
+    """Each of HALLS: random obstacles (12 %) but at its two ends, the robot at the middle of one end and the goal at
+    the other's, three 4 x 4 boxes shuttling across it at a quarter, a half and three quarters of its length."""
+    out = []
+    for rows, cols in HALLS:
+        width, length = min(rows, cols), max(rows, cols)
+        occupied = np.random.default_rng(length).random((width, length)) < 0.12  # lying: along the columns
+        occupied[:, :3] = occupied[:, -3:] = False
+        boxes = [((2, c, 6, c + 4), [(width - 6, c), (2, c)], speed)
+                 for c, speed in ((length // 4, 0.3), (length // 2, 0.5), (3 * length // 4, 0.4))]
+        start, goal = (width // 2, 0), (width // 2, length - 1)
+        if rows > cols:  # standing: every coordinate transposed
+            occupied = occupied.T
+            boxes = [((c0, r0, c1, r1), [(c, r) for r, c in waypoints], speed)
+                     for (r0, c0, r1, c1), waypoints, speed in boxes]
+            start, goal = start[::-1], goal[::-1]
+        obstacles = [tdp.Obstacle(box=box, waypoints=waypoints, speed=speed) for box, waypoints, speed in boxes]
+        out.append(tdp.Scenario(tdp.GridMap(occupied), start, goal, obstacles=obstacles, name=f"hall-{rows}x{cols}",
+                                max_ticks=4 * length))
     return out
 
 
