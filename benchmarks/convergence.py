@@ -7,8 +7,9 @@ goals at a corner, the centre and a random cell; perfect mazes of side 512 with 
 (``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one
 corridor a cell wide winding row by row: ``serpentine``), goals at a corner, the centre and a random free cell;
 halls of 4096 x 64 and 64 x 4096 cells (random, 20 % obstacles: a long corridor or aisle), goals at the middle of an
-end, the centre and a random free cell; the MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
-world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil
+end, the centre and a random free cell; the MovingAI maps in ../shared/data with several scenario goals each
+(skipped when absent); the ROS maps (turtlebot3's world, nav2's 1674 x 1006 warehouse and its depot, inflated by
+0.2 m) with random goals. All on the default stencil
 (16 neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner
 goal, turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
 timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are timed in turn,
@@ -558,9 +559,9 @@ def summarise(results: list[dict], closing: list[dict]) -> dict:
     CONVERGE_LARGE cells or more), the worst to tcod's, the median repair ratio (the edit and its converge) for
     local changes (box, wall) and the worst for any change, the converge's alone for both; for local changes the
     median share of the reachable cells a repair changes, its converge's time per changed cell and a from-scratch
-    converge's per reached cell (a repair's work follows the cells it changes), and the median ``floor``; and the slowest 9-cell box repair on
-    a 256² map (its converge, with its edit, and the two back to back with no other field's converge between); the
-    worst door (``doors``: ``closing``) among any change's."""
+    converge's per reached cell (a repair's work follows the cells it changes), and the median ``floor``; and the
+    slowest 9-cell box repair on a 256² map (its converge, with its edit, and the two back to back with no other
+    field's converge between); the worst door (``doors``: ``closing``) among any change's."""
     repairs = [q for r in results for q in r.get("repairs", [])] + closing
     local = [q for q in repairs if q["kind"] in ("box", "wall")]
     boxes_256 = [q for r in results if r["map"].startswith("random 256² ") for q in r.get("repairs", [])

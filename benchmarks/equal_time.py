@@ -11,8 +11,8 @@ with a box appearing on the route on MovingAI maps (arena and den312d from tests
 when present maze512-32-0, random512-10-0 and 8room_000, start and goal from their longest scenario), and nav2's
 warehouse and depot maps (inflated by 0.2 m, start and goal from the largest free region) with six shuttling
 boxes and with a box appearing; and two halls (HALLS: a corridor 24 cells wide and 600 long, 12 % obstacles, lying
-and standing, three boxes shuttling across it), driven end to end. On maps of more than LARGE cells the DP planners run K = 1 and a budget of 1 ms
-only (a tick costs tens of milliseconds there).
+and standing, three boxes shuttling across it), driven end to end. On maps of more than LARGE cells the DP planners
+run K = 1 and a budget of 1 ms only (a tick costs tens of milliseconds there).
 
 Per world, the exact planner (unbudgeted: the oracle) is checked against a goal field converged fully every tick
 (``benchmarks.reference_planner``): the same trajectory, tick for tick. Per world group and planner setting:
