@@ -130,11 +130,10 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int 
     Raises:
         ValueError: ``out`` is no path (a str or a pathlib.Path).
     """
-    log = sys.stderr if log is None else log
-    journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)
+    journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)  # its log: ``log``, else sys.stderr now
     episodes = spec.episodes()
     todo = [e for e in episodes if e.key not in journal.rows]
-    progress = Progress(len(episodes), len(episodes) - len(todo), log)
+    progress = Progress(len(episodes), len(episodes) - len(todo), journal.log)
     if todo:
         for episode, row, error in _serially(todo) if serial else _on_dask(todo, scheduler, workers):
             journal.add(episode.key, row, error)
