@@ -15,10 +15,10 @@ from types import SimpleNamespace
 
 import pytest
 
+from benchmarks.common import RESULTS
 from benchmarks.smoke import OUT as OUTCOMES, SCRIPTS, run_script
 
 ROOT = Path(__file__).resolve().parents[1]
-RESULTS = ROOT / "benchmarks" / "results"
 #: The key each script's JSON must fill.
 FILLED = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
           "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
