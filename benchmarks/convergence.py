@@ -120,12 +120,19 @@ def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray,
     free = np.argwhere(~occupied)
     goals = {"corner": (0, 0), "centre": (size // 2, size // 2),
              "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
+    dense = "" if density == 0.2 else f"{round(100 * density)} % "
+    return goal_cases(f"random {size}² {dense}", occupied, goals)
+
+
+def goal_cases(prefix: str, occupied: np.ndarray, goals: dict[str, tuple[int, int]]
+               ) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A case for each of ``goals`` (place: cell), named ``prefix`` + the place, on ``occupied`` with the goal's cell
+    freed."""
     cases = []
     for place, goal in goals.items():
         grid = occupied.copy()
         grid[goal] = False
-        dense = "" if density == 0.2 else f"{round(100 * density)} % "
-        cases.append((f"random {size}² {dense}{place}", grid, goal))
+        cases.append((f"{prefix}{place}", grid, goal))
     return cases
 
 
@@ -136,12 +143,7 @@ def hall_cases(rows: int, cols: int) -> list[tuple[str, np.ndarray, tuple[int, i
     free = np.argwhere(~occupied)
     goals = {"end": (0, cols // 2) if rows > cols else (rows // 2, 0), "centre": (rows // 2, cols // 2),
              "random": tuple(int(v) for v in free[np.random.default_rng(rows + 1).integers(len(free))])}
-    cases = []
-    for place, goal in goals.items():
-        grid = occupied.copy()
-        grid[goal] = False
-        cases.append((f"hall {rows}x{cols} {place}", grid, goal))
-    return cases
+    return goal_cases(f"hall {rows}x{cols} ", occupied, goals)
 
 
 def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
