@@ -478,6 +478,9 @@ def init_taichi() -> None:
 
 #: Launch kernels through :class:`_Launcher`'s direct path (tests turn it off to compare the two paths).
 DIRECT_LAUNCH = True
+#: On the CPU, keep each direct launch's context for the next launch with the same Taichi ndarrays (tests turn it
+#: off to compare).
+HOLD_CONTEXTS = True
 #: The Taichi whose launch internals :class:`_Launcher` was written against (1.7); another takes Taichi's calls.
 _DIRECT_TAICHI = tuple(ti.__version__[:2]) == (1, 7)
 _SIGNED = (ti.i8, ti.i16, ti.i32, ti.i64)
@@ -493,6 +496,25 @@ def _argument_kind(value) -> object:
     return type(value)
 
 
+class _HeldLaunch(NamedTuple):
+    """A launch context :class:`_Launcher` keeps for its next launch: the kernel instance it is for, the context and
+    the compiled kernel, (index, weak reference) of each Taichi ndarray argument it holds, the other arguments'
+    indices (set at every launch)."""
+
+    instance: object
+    context: object
+    compiled: object
+    arrays: tuple
+    others: tuple
+
+
+def _set_host_array(program, context, index: int, array: "_Ndarray") -> None:
+    """Set argument ``index`` of launch ``context`` to the host memory of Taichi ndarray ``array`` (CPU only), as
+    Taichi sets a numpy array's: its shape without the element's (a vector's lanes)."""
+    context.set_arg_external_array_with_shape((index,), program.get_ndarray_data_ptr_as_int(array.arr),
+                                              array.arr.nelement() * array.arr.element_size(), array.arr.shape, 0)
+
+
 class _Launcher:
     """A ``ti.kernel`` launched by keywords, Taichi's per-argument work done once per kind of arguments.
 
@@ -502,7 +524,10 @@ class _Launcher:
     (:func:`_argument_kind`) goes through Taichi's own call, which compiles, checks and launches; later ones set each
     argument's slot directly (``Kernel.launch_kernel``'s calls, read from Taichi 1.7.4) and launch the instance the
     first one compiled. A kernel or argument it does not handle (a struct, a returned vector), and any other Taichi
-    version, always takes Taichi's call."""
+    version, always takes Taichi's call. On the CPU it keeps the last launch's context (:meth:`_held_context`) and,
+    while the Taichi ndarrays passed are the same objects, sets only the numpy and scalar arguments again: setting an
+    ndarray's slot (4-5 µs), making a context and looking the compiled kernel up cost a mend's launch about 80 µs of
+    its 137 on the 2-core VM."""
 
     def __init__(self, kernel):
         self.kernel = kernel
@@ -510,6 +535,7 @@ class _Launcher:
         self._names = tuple(self.__signature__.parameters)
         # kinds of arguments -> (Taichi's kernel instance, argument setters, return reader); False: Taichi's call
         self._ready: dict = {}
+        self._held: _HeldLaunch | None = None  # the last direct launch's context, for the next (``_held_context``)
 
     def __call__(self, **arguments):
         values = tuple(arguments[name] for name in self._names)
@@ -524,11 +550,39 @@ class _Launcher:
             return self.kernel(**arguments)
         instance, setters, returned = ready
         program = _taichi_impl.get_runtime().prog
-        context = instance.make_launch_context()
-        for index, (setter, value) in enumerate(zip(setters, values)):
-            setter(context, (index,), value)
-        program.launch_kernel(program.compile_kernel(program.config(), program.get_device_caps(), instance), context)
+        if _on_cpu and HOLD_CONTEXTS:
+            context, compiled = self._held_context(program, instance, setters, values)
+        else:
+            context = instance.make_launch_context()
+            for index, (setter, value) in enumerate(zip(setters, values)):
+                setter(context, (index,), value)
+            compiled = program.compile_kernel(program.config(), program.get_device_caps(), instance)
+        program.launch_kernel(compiled, context)
         return returned(context) if returned else None
+
+    def _held_context(self, program, instance, setters, values: tuple):
+        """The launch context (and compiled kernel) of the last launch, its numpy and scalar arguments set anew, while
+        its Taichi ndarrays are the same objects; else a new one, held for the next launch. On the CPU a held
+        context's ndarrays are set as the host memory they own (``_set_host_array``): Taichi's CPU launcher turns an
+        ndarray's slot into its raw pointer at the first launch, and a second launch of the same context read the
+        ndarray's allocation record as its data."""
+        held = self._held
+        if held is not None and held.instance is instance and all(ref() is values[i] for i, ref in held.arrays):
+            for index in held.others:
+                setters[index](held.context, (index,), values[index])
+            return held.context, held.compiled
+        context = instance.make_launch_context()
+        arrays, others = [], []
+        for index, (setter, value) in enumerate(zip(setters, values)):
+            if isinstance(value, _Ndarray):
+                _set_host_array(program, context, index, value)
+                arrays.append((index, weakref.ref(value)))
+            else:
+                setter(context, (index,), value)
+                others.append(index)
+        compiled = program.compile_kernel(program.config(), program.get_device_caps(), instance)
+        self._held = _HeldLaunch(instance, context, compiled, tuple(arrays), tuple(others))
+        return context, compiled
 
     def _prepare(self, values: tuple):
         """The instance Taichi compiled for ``values``' kinds, a setter per argument and a reader of the returned

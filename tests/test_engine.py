@@ -408,17 +408,46 @@ def test_direct_launches_give_what_taichis_calls_give(monkeypatch, nodes):
     kind of arguments: the same runs through every kind of launch, by that path and by Taichi's own calls, leave
     the same values bit for bit, and the direct path is the one taken (Taichi's call runs once per kind)."""
     runs = []
-    for direct in (False, True):
+    for direct, held in ((False, False), (True, False), (True, True)):
         monkeypatch.setattr(engine_module, "DIRECT_LAUNCH", direct)
+        monkeypatch.setattr(engine_module, "HOLD_CONTEXTS", held)
         runs.append(_every_kind_of_launch(nodes))
-    for by_taichi, by_launcher in zip(*runs):
-        np.testing.assert_array_equal(np.asarray(by_taichi), np.asarray(by_launcher))
+    for by_taichi, *by_launcher in zip(*runs):
+        for seen in by_launcher:
+            np.testing.assert_array_equal(np.asarray(by_taichi), np.asarray(seen))
     calls = []
     for lanes in (0, LANES):
         for launcher in engine_module._kernels_for(lanes, 16, False, True).all:
             monkeypatch.setattr(launcher, "kernel", recorded(launcher.kernel, launcher.__name__, calls))
     _every_kind_of_launch(nodes)
     assert calls == []
+
+
+def test_a_held_launch_context_is_reused_only_with_the_same_ndarrays(monkeypatch):
+    """A launcher keeps its last context: mends of the same field set no ndarray again; a field of the same shape made
+    after the first is dropped (its arrays freed, perhaps at the same addresses) gets contexts of its own and the
+    values a fresh converge gives."""
+    set_again = []
+    host_array = engine_module._set_host_array
+    monkeypatch.setattr(engine_module, "_set_host_array", lambda *a: set_again.append(a[2]) or host_array(*a))
+    occupied = random_map(30, 30, 0.2, 3)
+    for _ in range(2):
+        engine = Engine(occupied, (0, 0))
+        engine.converge()
+        for cell in [(5, 5), (6, 6), (5, 5)]:
+            engine.set_cells(np.array([cell]), np.array([not occupied[cell]]))
+            engine.converge()
+            occupied[cell] = not occupied[cell]
+            fresh = Engine(occupied, (0, 0))
+            fresh.converge()
+            np.testing.assert_array_equal(engine.goal_distances(), fresh.goal_distances())
+            for toggle in range(4):  # the same mend's launches: after the first two, nothing is set again
+                if toggle == 2:
+                    set_again.clear()
+                engine.set_cells(np.array([(20, 20)]), np.array([occupied[20, 20] == (toggle % 2 == 1)]))
+                engine.converge()
+            assert set_again == [] or not engine_module._on_cpu
+        del engine, fresh
 
 
 _SHAPE = (13, 17)
