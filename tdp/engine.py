@@ -497,13 +497,12 @@ def _argument_kind(value) -> object:
 
 
 class _HeldLaunch(NamedTuple):
-    """A launch context :class:`_Launcher` keeps for its next launch: the kernel instance it is for, the context and
-    the compiled kernel, (index, weak reference) of each Taichi ndarray argument it holds, the other arguments'
-    indices (set at every launch)."""
+    """A launch context :class:`_Launcher` keeps for its next launch: the kernel instance it is for, the context,
+    (index, weak reference) of each Taichi ndarray argument it holds, the other arguments' indices (set at every
+    launch)."""
 
     instance: object
     context: object
-    compiled: object
     arrays: tuple
     others: tuple
 
@@ -533,7 +532,8 @@ class _Launcher:
         self.kernel = kernel
         self.__name__, self.__doc__, self.__signature__ = kernel.__name__, kernel.__doc__, inspect.signature(kernel)
         self._names = tuple(self.__signature__.parameters)
-        # kinds of arguments -> (Taichi's kernel instance, argument setters, return reader); False: Taichi's call
+        # kinds of arguments -> (Taichi's kernel instance, its compiled kernel, argument setters, return reader);
+        # False: Taichi's call
         self._ready: dict = {}
         self._held: _HeldLaunch | None = None  # the last direct launch's context, for the next (``_held_context``)
 
@@ -548,20 +548,19 @@ class _Launcher:
             return result
         if ready is False:
             return self.kernel(**arguments)
-        instance, setters, returned = ready
+        instance, compiled, setters, returned = ready
         program = _taichi_impl.get_runtime().prog
         if _on_cpu and HOLD_CONTEXTS:
-            context, compiled = self._held_context(program, instance, setters, values)
+            context = self._held_context(program, instance, setters, values)
         else:
             context = instance.make_launch_context()
             for index, (setter, value) in enumerate(zip(setters, values)):
                 setter(context, (index,), value)
-            compiled = program.compile_kernel(program.config(), program.get_device_caps(), instance)
         program.launch_kernel(compiled, context)
         return returned(context) if returned else None
 
     def _held_context(self, program, instance, setters, values: tuple):
-        """The launch context (and compiled kernel) of the last launch, its numpy and scalar arguments set anew, while
+        """The launch context of the last launch, its numpy and scalar arguments set anew, while
         its Taichi ndarrays are the same objects; else a new one, held for the next launch. On the CPU a held
         context's ndarrays are set as the host memory they own (``_set_host_array``): Taichi's CPU launcher turns an
         ndarray's slot into its raw pointer at the first launch, and a second launch of the same context read the
@@ -570,7 +569,7 @@ class _Launcher:
         if held is not None and held.instance is instance and all(ref() is values[i] for i, ref in held.arrays):
             for index in held.others:
                 setters[index](held.context, (index,), values[index])
-            return held.context, held.compiled
+            return held.context
         context = instance.make_launch_context()
         arrays, others = [], []
         for index, (setter, value) in enumerate(zip(setters, values)):
@@ -580,13 +579,13 @@ class _Launcher:
             else:
                 setter(context, (index,), value)
                 others.append(index)
-        compiled = program.compile_kernel(program.config(), program.get_device_caps(), instance)
-        self._held = _HeldLaunch(instance, context, compiled, tuple(arrays), tuple(others))
-        return context, compiled
+        self._held = _HeldLaunch(instance, context, tuple(arrays), tuple(others))
+        return context
 
     def _prepare(self, values: tuple):
-        """The instance Taichi compiled for ``values``' kinds, a setter per argument and a reader of the returned
-        value (None: none returned); False where an argument or the return is of a kind not handled."""
+        """The instance Taichi compiled for ``values``' kinds, its compiled kernel (looked up once: Taichi's call
+        looks it up at every launch), a setter per argument and a reader of the returned value (None: none
+        returned); False where an argument or the return is of a kind not handled."""
         primal = self.kernel._primal
         if primal.has_print or any(isinstance(a.annotation, ti.template) for a in primal.arguments):
             return False
@@ -595,7 +594,9 @@ class _Launcher:
         if None in setters or returned is False:
             return False
         instance = primal.compiled_kernels[primal.ensure_compiled(*values)]
-        return instance, setters, returned
+        program = _taichi_impl.get_runtime().prog
+        compiled = program.compile_kernel(program.config(), program.get_device_caps(), instance)
+        return instance, compiled, setters, returned
 
 
 def _setter(annotation, value):
