@@ -41,14 +41,11 @@ def _ratio(metrics: dict) -> str:
     return "-" if metrics["ratio"] is None else f"{metrics['ratio']:.3f}"
 
 
-def _oracle_m(metrics: dict) -> str:
-    """The oracle's length, "-" where the episode has none (``sim.episode.grown_oracle``)."""
-    return "-" if metrics["oracle_length_m"] is None else f"{metrics['oracle_length_m']:.2f}"
-
-
 def _summary(metrics: dict) -> str:
+    from .render import oracle_text
+
     return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
-            f"oracle {_oracle_m(metrics)} m, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
+            f"oracle {oracle_text(metrics)}, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m (mean {metrics['mean_clearance_m']:.3f}); planner "
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")
 
@@ -78,15 +75,17 @@ def run(args: argparse.Namespace) -> int:
 def compare(args: argparse.Namespace) -> int:
     from tdp.cli import output_folder
 
+    from .render import oracle_text
+
     out = output_folder(args.out)
     films = {kind: [] if args.animate else None for kind in ("exact", "accelerating", "plain-dp")}
     rows = [(kind, _run_and_save(args, kind, out, kind, frames)) for kind, frames in films.items()]
     print(f"\n{rows[0][1]['scenario']}, K = {args.updates} for the DP planners, PyBullet DIRECT")
-    print("| planner | reached | time s | path m | oracle m | ratio | contacts | min clearance m | "
+    print("| planner | reached | time s | path m | oracle | ratio | contacts | min clearance m | "
           "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for kind, m in rows:
-        print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {_oracle_m(m)} "
+        print(f"| {kind} | {m['reached']} | {m['time_s']:.1f} | {m['path_length_m']:.2f} | {oracle_text(m)} "
               f"| {_ratio(m)} | {m['contacts']} | {m['min_clearance_m']:.3f} | "
               f"{m['planner_ms_per_tick']['median']:.2f} |")
     print("figures: " + ", ".join(m["figure"] for _, m in rows))

@@ -283,13 +283,14 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     finally:
         p.disconnect(physicsClientId=client)
     oracle = grown_oracle(scenario, config, sim.inflate_m / run.cell_m, max_ticks)
-    oracle_m = None if oracle is None else oracle["length"] * run.cell_m
+    oracle_reached = None if oracle is None else bool(oracle["reached"])
+    oracle_m = oracle["length"] * run.cell_m if oracle_reached else None  # no route's length where none reached
     turn_point, switch_back_point = run.landmark_points()
     return {
         "scenario": scenario.name, "planner": config.planner, "updates_per_move": config.updates_per_move,
         "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick,
-        "path_length_m": run.length_m, "oracle_length_m": oracle_m,
-        "ratio": run.length_m / oracle_m if oracle and oracle["reached"] and oracle_m > 0 else None,
+        "path_length_m": run.length_m, "oracle_reached": oracle_reached, "oracle_length_m": oracle_m,
+        "ratio": run.length_m / oracle_m if oracle_m else None,
         "contacts": run.contact_steps,
         "min_clearance_m": run.min_clearance, "mean_clearance_m": float(np.mean(run.clearances or [math.nan])),
         "detections": detection_records(run.results),

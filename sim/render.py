@@ -22,6 +22,14 @@ def _static_costs(scenario: tdp.Scenario, settings: dict) -> np.ndarray | None:
     return None if cost is None else np.where(grown, cost.max(), cost)
 
 
+def oracle_text(metrics: dict) -> str:
+    """The oracle's length in a run's metrics (from :func:`sim.episode.run_episode`) as tables and titles show it:
+    metres, "not reached" where the oracle found no way for the robot, "-" where the episode has no oracle."""
+    if metrics["oracle_reached"] is False:
+        return "not reached"
+    return "-" if metrics["oracle_length_m"] is None else f"{metrics['oracle_length_m']:.2f} m"
+
+
 def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) -> Path:
     """Write a PNG of the run in ``metrics`` (from :func:`sim.episode.run_episode`); returns the file written."""
     plt = pyplot()
@@ -58,8 +66,7 @@ def save_trace_figure(scenario: tdp.Scenario, metrics: dict, out: str | Path) ->
             ax.annotate("A" if name == "turn_point" else "B", (c, r), xytext=(6, -6), textcoords="offset points",
                         fontsize=13, weight="bold")
     ax.set_title(f"PyBullet {metrics['scenario']}, {planner_label(metrics['config'])}: "
-                 f"{metrics['path_length_m']:.2f} m (oracle "
-                 f"{'none' if metrics['oracle_length_m'] is None else format(metrics['oracle_length_m'], '.2f')} m), "
+                 f"{metrics['path_length_m']:.2f} m (oracle {oracle_text(metrics)}), "
                  f"contacts {metrics['contacts']}", fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
     return save_figure(fig, out)

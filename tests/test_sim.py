@@ -11,6 +11,7 @@ import pytest
 import tdp
 from sim.__main__ import main as sim_command
 from sim.episode import SimConfig, connect, run_episode
+from sim.render import oracle_text
 from sim.robot import DiffDriveRobot, wheel_speeds
 from sim.world import SimWorld, box_cells
 from tdp.contract import WorldFeed
@@ -134,6 +135,21 @@ def test_a_coarse_map_keeps_the_episodes_metrics_where_its_oracle_has_no_room():
     metrics = run_episode(boxed)
     assert metrics["reached"] and metrics["oracle_length_m"] is None and metrics["ratio"] is None
     assert metrics["path_length_m"] > 0 and metrics["oracle_trajectory"] == []
+
+
+def test_a_world_the_grown_robot_cannot_cross_reports_no_oracle_length():
+    """A gap of two 0.1 m cells lets the grid's point robot through but not the simulated one (obstacles grown by
+    0.25 m): the robot waits and its oracle, on the same grown map, never reaches the goal. Its metrics said so with
+    an oracle length of 0.00 m, the distance the oracle had driven; an oracle that did not reach has none."""
+    occupied = np.zeros((30, 30), bool)
+    occupied[:, 15] = True
+    occupied[14:16, 15] = False  # the gap, 0.2 m
+    world = tdp.Scenario(tdp.GridMap(occupied, resolution=0.1), (15, 3), (15, 27), max_ticks=8)
+    assert tdp.simulate(world, max_ticks=40).reached  # at grid level there is a way
+    metrics = run_episode(world)
+    assert not metrics["reached"] and metrics["oracle_reached"] is False
+    assert metrics["oracle_length_m"] is None and metrics["ratio"] is None
+    assert oracle_text(metrics) == "not reached"
 
 
 @pytest.mark.parametrize("planner", ["exact", "accelerating"])
