@@ -27,7 +27,7 @@ def run(args: argparse.Namespace) -> int:
     """Run one episode and write metrics.json and episode.png into --out."""
     import tdp
     from tdp.cli import output_folder, save_json, world_from
-    from tdp.plot import save_episode_figure
+    from tdp.plot import oracle_text, save_episode_figure
 
     scenario = world_from(args)
     out = output_folder(args.out)
@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
         figure = ", ".join(str(f) for f in [figure, *save_episode_animation(scenario, [episode], out / "episode.gif",
                                                                          progress=True)])
     print(f"reached: {episode.reached} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
-          f"{episode.oracle_length:.2f}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
+          f"{oracle_text(episode)}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
           f"({sum(d['relevant'] for d in episode.detections)} relevant); planner "
           f"{episode.timings['total']['median']:.2f} ms/tick (median)")

@@ -86,6 +86,12 @@ def box_patch(plt, box, **style):
     return plt.Rectangle((c0 - 0.5, r0 - 0.5), c1 - c0, r1 - r0, **style)
 
 
+def oracle_text(episode) -> str:
+    """An Episode's oracle length (cells, one decimal) as titles and summaries show it; "not reached" where the
+    oracle found no way."""
+    return f"{episode.oracle_length:.1f}" if episode.oracle_reached else "not reached"
+
+
 def save_episode_figure(scenario, episode, out: str | Path) -> Path:
     """A top-down figure like the paper's: map, nodes and their edges, the trajectory coloured by mode, the
     oracle's path, obstacles' first (outline) and last (filled) positions, the target path, the turn point A and
@@ -124,7 +130,7 @@ def save_episode_figure(scenario, episode, out: str | Path) -> Path:
                         weight="bold", color="black")
             ax.plot(point[1], point[0], "kx", ms=9, mew=2)
     ax.set_title(f"{episode.scenario}, {planner_label(episode.config)}: "
-                 f"length {episode.length:.1f} (oracle {episode.oracle_length:.1f}, ratio {episode.ratio:.3f})",
+                 f"length {episode.length:.1f} (oracle {oracle_text(episode)}, ratio {episode.ratio:.3f})",
                  fontsize=9)
     ax.legend(loc="lower left", fontsize=7, framealpha=0.85)
     return save_figure(fig, out)

@@ -22,13 +22,15 @@ from .world import Scenario, box_distance
 class Episode:
     """Metrics of one run (ARCHITECTURE §6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
     max; the kernels are compiled in the setup phase, before the first tick). ``ratio``: the length over the
-    oracle's, nan unless both reached the goal."""
+    oracle's, nan unless both reached the goal; ``oracle_length`` is nan where the oracle did not reach it
+    (``oracle_reached``: no way on the map as it went, within the ticks)."""
 
     scenario: str
     config: dict
     reached: bool
     ticks: int
     length: float
+    oracle_reached: bool
     oracle_length: float
     ratio: float
     collisions: int
@@ -194,7 +196,8 @@ def _episode(scenario, config, navigator, record, oracle_record, nodes, edges) -
     timings["total"] = timing_summary([sum(r.timings.values()) for r in results])
     return Episode(
         scenario=scenario.name, config=config.to_dict(), reached=record["reached"], ticks=record["ticks"],
-        length=record["length"], oracle_length=oracle_record["length"], ratio=ratio,
+        length=record["length"], oracle_reached=oracle_record["reached"],
+        oracle_length=oracle_record["length"] if oracle_record["reached"] else math.nan, ratio=ratio,
         collisions=record["collisions"], hits=record["hits"], iterations=navigator.engine.iterations,
         detections=detections, trajectory=record["trajectory"], modes=record["modes"],
         target_path=record["target_path"], oracle_trajectory=oracle_record["trajectory"], nodes=nodes, edges=edges,

@@ -11,6 +11,7 @@ import tdp
 from tdp.blockage import BlockageMonitor, segment_near_path
 from tdp.contract import Mode
 from tdp.nodes import NodeGraph, place_nodes
+from tdp.plot import oracle_text
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 from tdp.stencil import escape_move
@@ -380,6 +381,21 @@ def test_a_door_closing_on_the_robot_lets_it_drive_on_through_when_that_side_is_
     assert episode.reached and episode.collisions == 0
     assert episode.length == pytest.approx(25.0) and episode.oracle_length == pytest.approx(25.0)
     assert all(not occupied[cell] or 14 <= cell[1] < 17 for cell in episode.trajectory)
+
+
+def test_an_oracle_that_never_reaches_the_goal_has_no_length():
+    """The goal walled in for the whole run: neither the robot nor the oracle gets there. The episode said the
+    oracle's length was 0.0 (the cells it drove) and ``tdp run`` printed it; now oracle_length is nan, oracle_reached
+    false and the summary says "not reached"."""
+    occupied = np.zeros((20, 20), bool)
+    occupied[12:17, 12:17] = True
+    occupied[13:16, 13:16] = False  # a room with no door round the goal
+    episode = tdp.simulate(tdp.Scenario(tdp.GridMap(occupied), (2, 2), (14, 14)), max_ticks=10)
+    assert not episode.reached and episode.oracle_reached is False
+    assert math.isnan(episode.oracle_length) and math.isnan(episode.ratio)
+    assert oracle_text(episode) == "not reached"
+    reached = tdp.simulate(tdp.Scenario(tdp.GridMap(np.zeros((20, 20), bool)), (2, 2), (14, 14)), max_ticks=40)
+    assert reached.oracle_reached and oracle_text(reached) == "17.0"  # 12 diagonal moves
 
 
 def test_escape_move_takes_the_shortest_way_out_towards_the_goal_never_deeper():
