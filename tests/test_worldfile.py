@@ -76,6 +76,9 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
     ("- just\n- a list\n", r"the file: expected a mapping"),
     ("root:x:0:0:root:/root:/bin/bash " * 40 + "\n", r"the file: expected a mapping, got 'root:x:0:0:.{30,60}\.\.\.$"),
     ("map: [unclosed\n", r"not valid YAML"),
+    (BASE + "name: [a, b]\n", r"name: expected text, got \['a', 'b'\]"),
+    (BASE + "description: {door: shut}\n", r"description: expected text"),
+    (BASE + "name: yes\n", r"name: expected text, got True"),
 ])
 def test_mistakes_in_a_world_file_name_the_file_and_the_key(tmp_path, text, message):
     path = tmp_path / "bad-world.yaml"
@@ -83,6 +86,14 @@ def test_mistakes_in_a_world_file_name_the_file_and_the_key(tmp_path, text, mess
     with pytest.raises(ValueError, match=message) as raised:
         tdp.load_world(path)
     assert str(raised.value).startswith(str(path))
+
+
+def test_an_empty_name_or_description_takes_the_default_and_digits_are_text(tmp_path):
+    """``name:`` with nothing after it is YAML's null: the world was called "None"."""
+    path = tmp_path / "door.yaml"
+    path.write_text(BASE + "name:\ndescription: 2024\n")
+    world = tdp.load_world(path)
+    assert world.name == "door" and world.description == "2024"
 
 
 def test_a_missing_world_file():
