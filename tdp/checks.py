@@ -43,6 +43,17 @@ def path(value, name: str, kind: str = "file") -> Path:
     return Path(value)
 
 
+def text(value, name: str, default: str) -> str:
+    """A name or a description read from a file: text, or a finite number YAML read from unquoted digits, as text;
+    ``default`` where it is absent or empty."""
+    if value is None or value == "":
+        return default
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)) or (
+            isinstance(value, float) and not math.isfinite(value)):
+        raise ValueError(f"{name} must be text, got {shown(value)}")
+    return str(value)
+
+
 def integer(value, name: str, low: int | None = None, high: int | None = None) -> int:
     """``value`` as an int if it is an integer (numpy integers included, bools not) >= ``low`` and <= ``high``."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):

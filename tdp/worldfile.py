@@ -79,15 +79,6 @@ class _Reader:
             self.fail(key, f"expected a number {'>' if strict else '>='} {low}, got {checks.shown(value)}")
         return float(value)
 
-    def text(self, value, key: str, default: str) -> str:
-        """A name or a description: text, or a number YAML read from unquoted digits; ``default`` where the key is
-        absent or empty."""
-        if value is None:
-            return default
-        if isinstance(value, bool) or not isinstance(value, (str, int, float)):
-            self.fail(key, f"expected text, got {checks.shown(value)}")
-        return str(value)
-
     def integer(self, value, key: str, low: int = 0) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or value < low:
             self.fail(key, f"expected an integer >= {low}, got {checks.shown(value)}")
@@ -141,8 +132,8 @@ def load_world(path: str | Path) -> Scenario:
     try:
         return Scenario(grid, cells["start"], cells["goal"], obstacles=obstacles, target_waypoints=waypoints,
                         target_speed=place.speed(target.get("speed", 0.5), "target.speed"),
-                        name=read.text(data.get("name"), "name", path.stem),
-                        description=read.text(data.get("description"), "description", ""),
+                        name=checks.text(data.get("name"), "name", path.stem),
+                        description=checks.text(data.get("description"), "description", ""),
                         map_source=source, tick_s=tick_s, **timing)
     except ValueError as error:
         raise ValueError(f"{path}: {error}") from None

@@ -97,6 +97,8 @@ def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
      "worlds[0].seeds.count must be an integer <= 100000"),
     ("worlds: [{scenario: static}]\nplanners: [{planner: exact, budget_ms: 1e-1}]",
      "budget_ms must be a number, got '1e-1' (YAML reads 1e-1 as text"),
+    ("name: {a: 1}\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got {'a': 1}"),
+    ("name: .nan\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got nan"),
 ])
 def test_a_bad_spec_is_a_value_error_naming_the_file_and_the_entry(tmp_path, text, words):
     path = spec_file(tmp_path, text)

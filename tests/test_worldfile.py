@@ -76,9 +76,9 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
     ("- just\n- a list\n", r"the file: expected a mapping"),
     ("root:x:0:0:root:/root:/bin/bash " * 40 + "\n", r"the file: expected a mapping, got 'root:x:0:0:.{30,60}\.\.\.$"),
     ("map: [unclosed\n", r"not valid YAML"),
-    (BASE + "name: [a, b]\n", r"name: expected text, got \['a', 'b'\]"),
-    (BASE + "description: {door: shut}\n", r"description: expected text"),
-    (BASE + "name: yes\n", r"name: expected text, got True"),
+    (BASE + "name: [a, b]\n", r"name must be text, got \['a', 'b'\]"),
+    (BASE + "description: {door: shut}\n", r"description must be text"),
+    (BASE + "name: yes\n", r"name must be text, got True"),
 ])
 def test_mistakes_in_a_world_file_name_the_file_and_the_key(tmp_path, text, message):
     path = tmp_path / "bad-world.yaml"

@@ -178,7 +178,7 @@ def _spec(data, path: Path) -> Spec:
         raise ValueError("'metrics' must be a list of module:function names")
     for name in metrics:
         metric_function(name)
-    return Spec(str(data.get("name") or path.stem), worlds, tuple(runs), tuple(columns), tuple(metrics))
+    return Spec(checks.text(data.get("name"), "name", path.stem), worlds, tuple(runs), tuple(columns), tuple(metrics))
 
 
 def _only(entry: dict, allowed: tuple[str, ...], where: str) -> None:
