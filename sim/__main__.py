@@ -28,7 +28,7 @@ def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, 
     from .episode import SimConfig, run_episode
     from .render import save_trace_figure
 
-    scenario, config = world_from(args), _config(args, planner)
+    scenario, config = world_from(args, costs_on_any_world=True), _config(args, planner)
     sim = SimConfig(cost_scaling_factor=args.cost_scaling_factor, inflation_radius=args.inflation_radius)
     print(f"running {scenario.name} in PyBullet ({config.label()})", flush=True)
     metrics = run_episode(scenario, config, sim, gui=getattr(args, "gui", False), progress=True, frames=frames)

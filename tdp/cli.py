@@ -25,6 +25,14 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
         return 130
 
 
+#: A quick world's shuttling boxes unless ``--boxes`` says otherwise.
+QUICK_BOXES = 3
+#: (argparse destination, flag) of the options that shape a quick world on ``--map`` only, and of the cost options.
+_QUICK_ONLY = (("start", "--start"), ("goal", "--goal"), ("boxes", "--boxes"), ("seed", "--seed"),
+               ("blockage", "--blockage"), ("graded", "--graded"))
+_COST_OPTIONS = (("cost_scaling_factor", "--cost-scaling-factor"), ("inflation_radius", "--inflation-radius"))
+
+
 def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     """The world to run, exactly one of: ``--scenario NAME`` (a named scenario), ``--world FILE`` (a world file) or
     ``--map FILE`` with ``--start``/``--goal`` (a quick world: ``--boxes N`` shuttling boxes from ``--seed S``, and a
@@ -36,8 +44,8 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     quick = parser.add_argument_group("quick world on --map")
     quick.add_argument("--start", nargs=2, type=int, metavar=("ROW", "COL"))
     quick.add_argument("--goal", nargs=2, type=int, metavar=("ROW", "COL"))
-    quick.add_argument("--boxes", type=int, default=3, help="shuttling boxes (default 3)")
-    quick.add_argument("--seed", type=int, default=0, help="seed of the boxes (default 0)")
+    quick.add_argument("--boxes", type=int, help=f"shuttling boxes (default {QUICK_BOXES})")
+    quick.add_argument("--seed", type=int, help="seed of the boxes (default 0)")
     quick.add_argument("--blockage", action="store_true", help="a box appears in a narrow place of the route")
     add_cost_arguments(quick)
 
@@ -72,20 +80,28 @@ def add_planner_argument(parser: argparse.ArgumentParser) -> None:
                         help="exact replanning every tick (default), the paper's accelerating nodes, or plain DP")
 
 
-def world_from(args: argparse.Namespace):
-    """The Scenario that ``--scenario``, ``--world`` or ``--map`` names."""
+def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
+    """The Scenario that ``--scenario``, ``--world`` or ``--map`` names. The options of a quick world on ``--map``
+    given with another world are a ValueError naming them, rather than ignored; so are the cost options unless
+    ``costs_on_any_world`` (a command that applies them to every world)."""
     import tdp
     from tdp.random_worlds import boxes_on_map
 
+    if not args.map:
+        quick_only = _QUICK_ONLY + (() if costs_on_any_world else _COST_OPTIONS)
+        given = [flag for dest, flag in quick_only if getattr(args, dest) not in (None, False)]
+        if given:
+            raise ValueError(f"{', '.join(given)}: options of a quick world on --map; --scenario and --world "
+                             "are worlds of their own")
     if args.world:
         return tdp.load_world(args.world)
     if args.map:
         if args.start is None or args.goal is None:
             raise ValueError("--map needs --start ROW COL and --goal ROW COL")
-        if args.boxes < 0 or args.seed < 0:
-            raise ValueError(f"--boxes and --seed must be >= 0, got {args.boxes} and {args.seed}")
-        return boxes_on_map(map_from(args), tuple(args.start), tuple(args.goal), args.boxes, args.seed,
-                            args.blockage)
+        boxes, seed = (QUICK_BOXES if args.boxes is None else args.boxes), (args.seed or 0)
+        if boxes < 0 or seed < 0:
+            raise ValueError(f"--boxes and --seed must be >= 0, got {boxes} and {seed}")
+        return boxes_on_map(map_from(args), tuple(args.start), tuple(args.goal), boxes, seed, args.blockage)
     return tdp.scenarios.get(args.scenario)
 
 

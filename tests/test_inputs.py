@@ -17,7 +17,7 @@ from PIL import Image
 
 import tdp
 from tdp.__main__ import main as tdp_command
-from tdp.cli import output_folder, save_json
+from tdp.cli import output_folder, save_json, world_from
 from tdp.field import cells_from
 from tdp.sweep import load_spec, run_sweep
 
@@ -276,6 +276,30 @@ def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_
     done = cli("-m", "tdp", "run", "--map", *ros, "--boxes", "0", "--cost-scaling-factor", "3", "--out", str(tmp_path))
     assert done.returncode == 2 and done.stderr.strip() == ("error: --cost-scaling-factor and --inflation-radius go "
                                                             "together (nav2's inflation layer)")
+
+
+@pytest.mark.parametrize("command, named", [
+    (["run", "--scenario", "static", "--start", "1", "1"], "--start"),
+    (["run", "--world", "examples/turtlebot3-world.yaml", "--boxes", "3", "--seed", "2"], "--boxes, --seed"),
+    (["run", "--scenario", "static", "--blockage", "--graded"], "--blockage, --graded"),
+    (["run", "--scenario", "static", "--cost-scaling-factor", "3", "--inflation-radius", "0.8"],
+     "--cost-scaling-factor, --inflation-radius"),
+])
+def test_a_quick_worlds_options_with_another_world_are_an_error_not_ignored(tmp_path, capsys, command, named):
+    """``tdp run --scenario static --start 1 1`` ran the scenario from its own start, the option silently dropped;
+    a quick world's options (and, for ``tdp run``, the cost options, which shape a quick world's map) now name
+    themselves in the error. ``sim`` applies the cost options to any world (``SimConfig``) and takes them."""
+    assert tdp_command([*command, "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.strip() == (f"error: {named}: options of a quick world on --map; --scenario and "
+                                               "--world are worlds of their own")
+    from sim.__main__ import parser as sim_parser
+
+    args = sim_parser().parse_args(["run", "--scenario", "static", "--cost-scaling-factor", "3",
+                                    "--inflation-radius", "0.8"])
+    assert world_from(args, costs_on_any_world=True).name == "static"
+    args = sim_parser().parse_args(["run", "--scenario", "static", "--graded"])
+    with pytest.raises(ValueError, match="--graded: options of a quick world"):
+        world_from(args, costs_on_any_world=True)
 
 
 def test_a_map_wider_than_the_engine_packs_is_a_clear_error():
