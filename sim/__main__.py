@@ -16,10 +16,11 @@ from pathlib import Path
 
 
 def _config(args: argparse.Namespace, planner: str):
-    import tdp
+    """The planner's config from the options: ``compare`` runs every planner with them, each taking those it reads
+    (K for the DP planners only); ``run`` refuses one its planner does not read."""
+    from tdp.cli import config_from
 
-    tracking = {} if planner == "exact" else {"predict_ticks": args.predict_ticks, "avoid_boxes": args.avoid_boxes}
-    return tdp.NavigatorConfig(planner=planner, updates_per_move=args.updates, budget_ms=args.budget_ms, **tracking)
+    return config_from(args, planner, strict=args.command == "run")
 
 
 def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, frames: list | None = None) -> dict:
@@ -80,7 +81,8 @@ def compare(args: argparse.Namespace) -> int:
     out = output_folder(args.out)
     films = {kind: [] if args.animate else None for kind in ("exact", "accelerating", "plain-dp")}
     rows = [(kind, _run_and_save(args, kind, out, kind, frames)) for kind, frames in films.items()]
-    print(f"\n{rows[0][1]['scenario']}, K = {args.updates} for the DP planners, PyBullet DIRECT")
+    print(f"\n{rows[0][1]['scenario']}, K = {_config(args, 'plain-dp').updates_per_move} for the DP planners, "
+          "PyBullet DIRECT")
     print("| planner | reached | time s | path m | oracle | ratio | contacts | min clearance m | "
           "planner ms/tick (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -119,10 +121,10 @@ def parser() -> argparse.ArgumentParser:
     for name, function in (("run", run), ("compare", compare)):
         sub = commands.add_parser(name, help=f"{name} a scenario in PyBullet")
         add_world_arguments(sub)
-        sub.add_argument("--updates", type=_positive, default=4, help="K, DP iterations per move (default 4)")
+        sub.add_argument("--updates", type=_positive, help="K, DP iterations per move (default 4)")
         sub.add_argument("--budget-ms", type=float, default=None,
                          help="a planning budget per control tick instead of K (at most the world's tick_s)")
-        sub.add_argument("--predict-ticks", type=int, default=0,
+        sub.add_argument("--predict-ticks", type=int,
                          help="obstacle prediction's horizon in ticks for the node layers (default 0: off)")
         sub.add_argument("--avoid-boxes", action="store_true",
                          help="yield or step aside instead of moving into a cell a box is about to enter")

@@ -26,16 +26,12 @@ def list_scenarios(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     """Run one episode and write metrics.json and episode.png into --out."""
     import tdp
-    from tdp.cli import output_folder, save_json, world_from
+    from tdp.cli import config_from, output_folder, save_json, world_from
     from tdp.plot import oracle_text, save_episode_figure
 
     scenario = world_from(args)
+    config = config_from(args, args.planner)
     out = output_folder(args.out)
-    config = tdp.NavigatorConfig(planner=args.planner, nodes=args.nodes, vision=args.vision,
-                                 updates_per_move=args.updates, detect_window=args.detect_window,
-                                 detect_rise=args.detect_rise, neighbourhood=args.neighbourhood,
-                                 corner_cutting=args.corner_cutting, budget_ms=args.budget_ms,
-                                 predict_ticks=args.predict_ticks, avoid_boxes=args.avoid_boxes)
     print(f"running {scenario.name} ({config.label()})", flush=True)
     episode = tdp.simulate(scenario, config, max_ticks=args.max_ticks, progress=True)
     metrics = save_json(episode.to_dict(), out / "metrics.json")
@@ -128,18 +124,18 @@ def parser() -> argparse.ArgumentParser:
     r = commands.add_parser("run", help="run a scenario: metrics.json and episode.png")
     add_world_arguments(r)
     add_planner_argument(r)
-    r.add_argument("--updates", type=int, default=4, help="K, DP iterations per robot move (default 4)")
+    r.add_argument("--updates", type=int, help="K, DP iterations per robot move (default 4)")
     r.add_argument("--budget-ms", type=float, default=None,
                    help="a time budget per tick instead of K: as many DP iterations as fit (at least one)")
-    r.add_argument("--nodes", type=int, default=25, help="number of accelerating nodes (default 25)")
-    r.add_argument("--vision", type=float, default=2.5, help="DmaxQ / node spacing (default 2.5)")
-    r.add_argument("--detect-window", type=int, default=6, help="J (default 6)")
-    r.add_argument("--detect-rise", type=float, default=None, help="U (default J - 1)")
-    r.add_argument("--predict-ticks", type=int, default=0,
+    r.add_argument("--nodes", type=int, help="number of accelerating nodes (default 25)")
+    r.add_argument("--vision", type=float, help="DmaxQ / node spacing (default 2.5)")
+    r.add_argument("--detect-window", type=int, help="J (default 6)")
+    r.add_argument("--detect-rise", type=float, help="U (default J - 1)")
+    r.add_argument("--predict-ticks", type=int,
                    help="obstacle prediction's horizon in ticks for the node layers (default 0: off)")
     r.add_argument("--avoid-boxes", action="store_true",
                    help="yield or step aside instead of moving into a cell a box is about to enter")
-    r.add_argument("--neighbourhood", type=int, default=16, choices=(4, 8, 16))
+    r.add_argument("--neighbourhood", type=int, choices=(4, 8, 16), help="moves of the stencil (default 16)")
     r.add_argument("--corner-cutting", action="store_true")
     r.add_argument("--max-ticks", type=int, default=None)
     r.add_argument("--out", default="out", help="output folder (default: out)")

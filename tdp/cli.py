@@ -80,6 +80,31 @@ def add_planner_argument(parser: argparse.ArgumentParser) -> None:
                         help="exact replanning every tick (default), the paper's accelerating nodes, or plain DP")
 
 
+#: The NavigatorConfig field of each planner option of the command lines, by its argparse destination.
+_CONFIG_OPTIONS = {"updates": "updates_per_move", "budget_ms": "budget_ms", "nodes": "nodes", "vision": "vision",
+                   "detect_window": "detect_window", "detect_rise": "detect_rise", "predict_ticks": "predict_ticks",
+                   "avoid_boxes": "avoid_boxes", "neighbourhood": "neighbourhood", "corner_cutting": "corner_cutting"}
+
+
+def config_from(args: argparse.Namespace, planner: str, strict: bool = True):
+    """The NavigatorConfig of ``planner`` with the planner options given on the command line, the rest at their
+    defaults (an option left out is None, or False for a switch). An option the planner does not read
+    (:func:`tdp.config.fields_read`) is a ValueError naming it; with ``strict`` False it is left out (a command that
+    runs every planner with the same options)."""
+    import tdp
+    from tdp.config import fields_read
+
+    given = {dest: getattr(args, dest) for dest in _CONFIG_OPTIONS if getattr(args, dest, None) is not None}
+    given = {dest: value for dest, value in given.items() if value is not False}
+    read = fields_read(planner)
+    unread = ["--" + dest.replace("_", "-") for dest in given if _CONFIG_OPTIONS[dest] not in read]
+    if unread and strict:
+        raise ValueError(f"{', '.join(unread)}: not read by {tdp.config.PLANNER_NAMES[planner]} (--planner "
+                         f"{planner})")
+    return tdp.NavigatorConfig(planner=planner, **{_CONFIG_OPTIONS[dest]: value for dest, value in given.items()
+                                                   if _CONFIG_OPTIONS[dest] in read})
+
+
 def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
     """The Scenario that ``--scenario``, ``--world`` or ``--map`` names. The options of a quick world on ``--map``
     given with another world are a ValueError naming them, rather than ignored; so are the cost options unless

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, fields
 
 from . import checks
 from .field import check_cap
@@ -136,6 +136,21 @@ class NavigatorConfig:
     def label(self) -> str:
         """The planner's name with what bounds its work per tick: K for the DP planners, or the budget."""
         return planner_label(self.to_dict())
+
+
+#: The fields every planner reads: the moves allowed.
+STENCIL_FIELDS = ("neighbourhood", "corner_cutting")
+#: The fields only accelerating nodes read: the node lattice and the blockage test.
+NODE_FIELDS = ("nodes", "spacing", "vision", "detect_window", "detect_rise", "placement", "switch_back")
+
+
+def fields_read(planner: str) -> tuple[str, ...]:
+    """The :class:`NavigatorConfig` fields besides ``planner`` that ``planner`` (one of PLANNERS) reads: the
+    stencil, ``d_max`` and ``budget_ms`` for exact replanning, all but the node lattice's for plain DP, all for
+    accelerating nodes. Sweep specs and command lines refuse the others rather than ignore them."""
+    every = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
+    return {"exact": STENCIL_FIELDS + ("d_max", "budget_ms"),
+            "plain-dp": tuple(f for f in every if f not in NODE_FIELDS)}.get(planner, every)
 
 
 def planner_label(config: dict) -> str:

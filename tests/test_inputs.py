@@ -17,7 +17,7 @@ from PIL import Image
 
 import tdp
 from tdp.__main__ import main as tdp_command
-from tdp.cli import output_folder, save_json, world_from
+from tdp.cli import config_from, output_folder, save_json, world_from
 from tdp.field import cells_from
 from tdp.sweep import load_spec, run_sweep
 
@@ -300,6 +300,35 @@ def test_a_quick_worlds_options_with_another_world_are_an_error_not_ignored(tmp_
     args = sim_parser().parse_args(["run", "--scenario", "static", "--graded"])
     with pytest.raises(ValueError, match="--graded: options of a quick world"):
         world_from(args, costs_on_any_world=True)
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--nodes", "9"], "--nodes: not read by exact replanning (--planner exact)"),
+    (["--updates", "1", "--avoid-boxes"], "--updates, --avoid-boxes: not read by exact replanning (--planner exact)"),
+    (["--planner", "plain-dp", "--vision", "2", "--detect-window", "4"],
+     "--vision, --detect-window: not read by plain DP (--planner plain-dp)"),
+])
+def test_a_planner_option_the_planner_does_not_read_is_an_error_not_ignored(tmp_path, capsys, options, message):
+    """``tdp run --scenario static --nodes 9`` ran the exact planner (the default) and dropped --nodes without a
+    word; an option the chosen planner does not read now names itself (``tdp.config.fields_read``, as the sweep
+    specs refuse such a field). ``sim compare`` runs every planner with the same options: each takes those it
+    reads."""
+    assert tdp_command(["run", "--scenario", "static", *options, "--out", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.strip() == f"error: {message}"
+    from tdp.__main__ import parser as tdp_parser
+    from sim.__main__ import parser as sim_parser
+
+    args = tdp_parser().parse_args(["run", "--scenario", "static", "--planner", "accelerating", "--nodes", "9",
+                                    "--updates", "1", "--neighbourhood", "8"])
+    assert config_from(args, "accelerating") == tdp.NavigatorConfig(planner="accelerating", nodes=9,
+                                                                     updates_per_move=1, neighbourhood=8)
+    args = sim_parser().parse_args(["run", "--scenario", "static", "--updates", "2"])
+    with pytest.raises(ValueError, match="--updates: not read by exact replanning"):
+        config_from(args, args.planner)
+    args = sim_parser().parse_args(["compare", "--scenario", "static", "--updates", "2", "--predict-ticks", "3"])
+    assert config_from(args, "exact", strict=False) == tdp.NavigatorConfig()
+    assert config_from(args, "plain-dp", strict=False) == tdp.NavigatorConfig(planner="plain-dp", updates_per_move=2,
+                                                                              predict_ticks=3)
 
 
 def test_a_map_wider_than_the_engine_packs_is_a_clear_error():

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .spec import STENCIL_FIELDS, Spec
+from ..config import STENCIL_FIELDS
+from .spec import Spec
 
 WORLD_COLUMNS = ("world", "group", "size", "seed", "planner")
 METRICS = ("reached", "ticks", "length", "ratio", "collisions", "hits", "waits", "yields", "backup_ticks",

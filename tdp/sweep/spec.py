@@ -48,17 +48,11 @@ from pathlib import Path
 import yaml
 
 from .. import checks
-from ..config import PLANNERS, NavigatorConfig
+from ..config import PLANNERS, STENCIL_FIELDS, NavigatorConfig, fields_read
 
 #: What a sweep's planners entry may name: the planners of a config, D* Lite and the oracle.
 SWEEP_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
-#: NavigatorConfig fields that only accelerating nodes read.
-NODE_FIELDS = ("nodes", "spacing", "vision", "detect_window", "detect_rise", "placement", "switch_back")
-#: The fields every planner reads: the moves allowed.
-STENCIL_FIELDS = ("neighbourhood", "corner_cutting")
 CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
-#: The fields the exact planner reads.
-EXACT_FIELDS = STENCIL_FIELDS + ("d_max", "budget_ms")
 WORLD_KINDS = ("family", "scenario", "world", "map")
 #: The most seeds one entry of ``worlds`` may count (seeds: {first, count}): each is a world kept in the spec's list.
 MAX_SEEDS = 100_000
@@ -299,8 +293,7 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
     if not isinstance(entry, dict) or entry.get("planner") not in SWEEP_PLANNERS:
         raise ValueError(f"{where}: a mapping whose 'planner' is one of {', '.join(SWEEP_PLANNERS)}")
     planner = entry["planner"]
-    allowed = {"accelerating": CONFIG_FIELDS, "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS),
-               "exact": EXACT_FIELDS}.get(planner, STENCIL_FIELDS)
+    allowed = fields_read(planner) if planner in PLANNERS else STENCIL_FIELDS  # D* Lite, the oracle: the stencil
     given = {k: v for k, v in entry.items() if k not in ("planner", "max_size")}
     max_size = checks.optional_integer(entry.get("max_size"), f"{where}.max_size", 1)
     for name in given:
