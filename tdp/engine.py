@@ -3603,9 +3603,10 @@ class Engine:
     def trace(self, layer: int, start: tuple[int, int], max_steps: int) -> list[tuple[int, int]]:
         """Cells visited by following the successors of ``layer`` (0 = goal, 1 + j = node j) from ``start``.
 
-        Stops at the layer's source, at a cell with no successor, or after ``max_steps`` moves; ``start`` itself is
-        not included.
+        Stops at the layer's source, at a cell with no successor, or after ``max_steps`` moves (an integer; none
+        when it is 0 or less); ``start`` itself is not included.
         """
+        max_steps = min(checks.integer(max_steps, "steps"), self.rows * self.cols)  # no route has more moves
         if max_steps <= 0:
             return []
         if layer == 0:

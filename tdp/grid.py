@@ -7,6 +7,7 @@ and :meth:`GridMap.cell_to_world` flip the rows. Occupancy is a bool array, True
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from pathlib import Path
 from typing import NamedTuple
@@ -57,9 +58,10 @@ class GridMap:
             raise ValueError(f"occupied must be a bool array (True = obstacle), got dtype {occupied.dtype}")
         if not (isinstance(resolution, (int, float)) and math.isfinite(resolution) and resolution > 0):
             raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+        if not (isinstance(origin, (tuple, list, np.ndarray)) and len(origin) in (2, 3) and all(
+                isinstance(v, numbers.Real) and not isinstance(v, bool) and math.isfinite(v) for v in origin)):
+            raise ValueError(f"origin must be finite (x, y) or (x, y, yaw), got {checks.shown(origin)}")
         origin = tuple(float(v) for v in origin)
-        if len(origin) not in (2, 3) or not all(math.isfinite(v) for v in origin):
-            raise ValueError(f"origin must be finite (x, y) or (x, y, yaw), got {origin!r}")
         self._occupied = occupied.copy()
         self._occupied.flags.writeable = False
         self._cost = None if cost is None else _checked_cost(cost, occupied)
@@ -131,7 +133,12 @@ class GridMap:
         return row, col
 
     def world_to_cell(self, x: float, y: float) -> tuple[int, int]:
-        """The (row, col) of the cell containing world point (x, y) in metres (may lie outside the map)."""
+        """The (row, col) of the cell containing world point (x, y) in metres (may lie outside the map).
+
+        Raises:
+            ValueError: x or y not a finite number.
+        """
+        x, y = checks.number(x, "x"), checks.number(y, "y")
         ox, oy, yaw = self.origin
         dx, dy = x - ox, y - oy
         u = math.cos(yaw) * dx + math.sin(yaw) * dy
@@ -141,7 +148,12 @@ class GridMap:
         return self.shape[0] - 1 - row_from_bottom, col
 
     def cell_to_world(self, row: float, col: float) -> tuple[float, float]:
-        """World (x, y) in metres of the centre of cell (row, col)."""
+        """World (x, y) in metres of the centre of cell (row, col) (may lie outside the map).
+
+        Raises:
+            ValueError: row or col not a finite number.
+        """
+        row, col = checks.number(row, "row"), checks.number(col, "col")
         ox, oy, yaw = self.origin
         u = (col + 0.5) * self.resolution
         v = (self.shape[0] - 1 - row + 0.5) * self.resolution

@@ -1,6 +1,7 @@
 """Bad and unusual input: each case here was silently wrong, a traceback or a hang before, and is now a clear
 ValueError naming what was wrong, or the right answer."""
 import json
+import math
 import os
 import struct
 import subprocess
@@ -329,6 +330,28 @@ def test_a_planner_option_the_planner_does_not_read_is_an_error_not_ignored(tmp_
     assert config_from(args, "exact", strict=False) == tdp.NavigatorConfig()
     assert config_from(args, "plain-dp", strict=False) == tdp.NavigatorConfig(planner="plain-dp", updates_per_move=2,
                                                                               predict_ticks=3)
+
+
+def test_coordinates_origins_and_route_lengths_that_are_not_numbers_are_value_errors():
+    """A fuzz of the public calls with odd values found four that ended in a TypeError from deep inside:
+    world_to_cell and cell_to_world of a list, a GridMap origin that is not a sequence, and route() of a
+    non-integer number of steps; a huge one is as many moves as any route can have."""
+    with pytest.raises(ValueError, match=r"x must be a number, got \[1, 2\]"):
+        GRID.world_to_cell([1, 2], 0.0)
+    with pytest.raises(ValueError, match="y must be a finite number, got inf"):
+        GRID.world_to_cell(0.0, math.inf)
+    with pytest.raises(ValueError, match=r"col must be a number, got '3'"):
+        GRID.cell_to_world(1, "3")
+    for origin in (True, (0.0, "1"), (0.0, True), (1.0,), np.zeros(4)):
+        with pytest.raises(ValueError, match="origin must be finite"):
+            tdp.GridMap(np.zeros((3, 3), bool), origin=origin)
+    assert tdp.GridMap(np.zeros((3, 3), bool), origin=np.array([1.0, 2.0])).origin == (1.0, 2.0, 0.0)
+    for planner in ("exact", "accelerating"):
+        navigator = tdp.make_planner(GRID, (0, 0), (9, 9), tdp.NavigatorConfig(planner=planner, nodes=4))
+        navigator.setup()
+        with pytest.raises(ValueError, match=r"steps must be an integer, got \(1, 2\)"):
+            navigator.route((1, 2))
+        assert navigator.route(10**30) == [(k, k) for k in range(1, 10)] and navigator.route(-1) == []
 
 
 def test_a_map_wider_than_the_engine_packs_is_a_clear_error():
