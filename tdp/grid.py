@@ -116,8 +116,9 @@ class GridMap:
             factor = checks.number(cost_scaling_factor, "cost_scaling_factor", 0.0)
             reach_m = checks.number(inflation_radius, "inflation_radius", 0.0)
             away_m, inscribed_m = away * self.resolution, radius_cells * self.resolution
-            nav2 = np.where(away_m <= reach_m, 252.0 * np.exp(-factor * (away_m - inscribed_m)), 0.0)
-            inflation = costmap_cost(np.minimum(nav2, 252.0))
+            # metres beyond the inscribed radius, kept finite: 252 within it, no cost past the reach either way
+            beyond_m = np.clip(away_m - inscribed_m, 0.0, reach_m + 1.0)
+            inflation = costmap_cost(np.where(away_m <= reach_m, 252.0 * np.exp(-factor * beyond_m), 0.0))
             cost = inflation if cost is None else np.maximum(cost, inflation)
         return GridMap(grown, self.resolution, self.origin, None if cost is None else np.asarray(cost, np.float64))
 

@@ -22,6 +22,7 @@ import math
 
 import numpy as np
 
+from . import checks
 from .field import DistanceField
 from .grid import GridMap
 from .world import Obstacle, Scenario
@@ -63,7 +64,7 @@ def maze(size: int, corridor: int = 1, seed: int = 0) -> np.ndarray:
     distances from a goal (a 1-cell maze of side 512 has routes of 26,000+ cells).
 
     Raises:
-        ValueError: ``size`` less than ``corridor + 2``, or ``corridor`` less than 1.
+        ValueError: ``size`` less than ``corridor + 2``, ``corridor`` less than 1, or ``seed`` not an integer >= 0.
 
     Examples:
         >>> occupied = maze(9, corridor=1, seed=0)
@@ -74,6 +75,7 @@ def maze(size: int, corridor: int = 1, seed: int = 0) -> np.ndarray:
         raise ValueError(f"corridor must be an int of at least 1 cell, got {corridor!r}")
     if not isinstance(size, (int, np.integer)) or size < corridor + 2:
         raise ValueError(f"size must be an int of at least corridor + 2 = {corridor + 2} cells, got {size!r}")
+    seed = checks.integer(seed, "seed", 0)
     pitch = corridor + 1
     rooms = (size - 1) // pitch
     occupied = np.ones((size, size), bool)
@@ -346,8 +348,17 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     """A quick world on any map: ``boxes`` boxes of about 0.3-0.6 m shuttling back and forth over free ground at
     0.3-0.6 cells per tick (the family generator's rule, here on a given map), kept clear of the walls, the start
     and the goal; with ``blockage``, one more box appears in a narrow place of the robot's route about a third of the
-    way along and stays. Deterministic for a given seed."""
-    rng = np.random.default_rng([len(FAMILIES), int(boxes), int(seed)])
+    way along and stays. Deterministic for a given seed.
+
+    Raises:
+        ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
+            ``seed`` not an integer >= 0, ``blockage`` not a bool.
+    """
+    if not isinstance(grid, GridMap):
+        raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
+    boxes, seed = checks.integer(boxes, "boxes", 0), checks.integer(seed, "seed", 0)
+    blockage = checks.flag(blockage, "blockage")
+    rng = np.random.default_rng([len(FAMILIES), boxes, seed])
     start, goal = grid.check_free_cell(start, "start"), grid.check_free_cell(goal, "goal")
     route = _route(grid.occupied, start, goal)
     if not route:

@@ -63,11 +63,13 @@ class Obstacle:
         object.__setattr__(self, "waypoints", waypoints)
 
     def present(self, tick: int) -> bool:
-        """Whether the box exists at ``tick``."""
+        """Whether the box exists at ``tick`` (a number: the PyBullet world moves boxes between ticks)."""
+        tick = checks.number(tick, "tick")
         return (self.appear_at is None or tick >= self.appear_at) and (self.vanish_at is None or tick < self.vanish_at)
 
     def corner(self, tick: int) -> tuple[float, float]:
-        """Top-left corner (row, col) at ``tick``, in cells (fractional while between cells)."""
+        """Top-left corner (row, col) at ``tick`` (a number), in cells (fractional while between cells)."""
+        tick = checks.number(tick, "tick")
         start = self.appear_at or 0
         points = [(float(self.box[0]), float(self.box[1]))] + [(float(r), float(c)) for r, c in self.waypoints]
         return _polyline_point(points, self.speed * max(0, tick - start))
@@ -141,6 +143,7 @@ class Scenario:
 
     def occupancy(self, tick: int) -> np.ndarray:
         """bool (H, W): the static map plus every box present at ``tick``."""
+        tick = checks.number(tick, "tick")
         occupied = self.grid.occupied.copy()
         rows, cols = self.grid.shape
         for obstacle in self.obstacles:
@@ -165,8 +168,8 @@ class Scenario:
         return mask & ~self.grid.occupied
 
     def _covering(self, tick: int, cell: tuple[int, int]):
-        """(footprint, moving) of each box present at ``tick`` that covers ``cell``."""
-        r, c = cell
+        """(footprint, moving) of each box present at ``tick`` that covers ``cell`` (row, col)."""
+        tick, (r, c) = checks.number(tick, "tick"), checks.pair(cell, "cell")
         for obstacle in self.obstacles:
             if obstacle.present(tick):
                 r0, c0, r1, c1 = obstacle.footprint(tick)
@@ -175,6 +178,7 @@ class Scenario:
 
     def target(self, tick: int) -> tuple[int, int]:
         """The target's cell at ``tick``."""
+        tick = checks.number(tick, "tick")
         points = [tuple(map(float, self.goal))] + [tuple(map(float, w)) for w in self.target_waypoints]
         r, c = _polyline_point(points, self.target_speed * tick)
         return _round(r), _round(c)

@@ -2,11 +2,13 @@
 ValueError naming what was wrong, or the right answer."""
 import json
 import math
+import re
 import os
 import struct
 import subprocess
 import sys
 import time
+import warnings
 import zlib
 from pathlib import Path
 
@@ -352,6 +354,41 @@ def test_coordinates_origins_and_route_lengths_that_are_not_numbers_are_value_er
         with pytest.raises(ValueError, match=r"steps must be an integer, got \(1, 2\)"):
             navigator.route((1, 2))
         assert navigator.route(10**30) == [(k, k) for k in range(1, 10)] and navigator.route(-1) == []
+
+
+def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
+    """The same fuzz, on the world's side: boxes_on_map truncated boxes=2.5 to 2 and died on a list or infinity
+    (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError); a scenario's occupancy, target,
+    holds and a box's footprint at a tick that is not a number ended in a TypeError; maze took a NaN seed to
+    numpy; nav2's inflation with a steep factor warned of overflow from numpy, its result right."""
+    from tdp.random_worlds import boxes_on_map, maze
+
+    for boxes, seed, message in ((2.5, 0, "boxes must be an integer, got 2.5"), ([1], 0, "boxes must be an integer"),
+                                 (1, math.inf, "seed must be an integer, got inf"), (-1, 0, "boxes must be an integer >= 0")):
+        with pytest.raises(ValueError, match=re.escape(message)):
+            boxes_on_map(GRID, (0, 0), (9, 9), boxes, seed)
+    with pytest.raises(ValueError, match="grid must be a tdp.GridMap, got ndarray"):
+        boxes_on_map(np.zeros((10, 10), bool), (0, 0), (9, 9))
+    with pytest.raises(ValueError, match="blockage must be"):
+        boxes_on_map(GRID, (0, 0), (9, 9), blockage="yes")
+    box = tdp.Obstacle(box=(4, 4, 6, 6), waypoints=[(4, 1)], speed=0.5)
+    world = tdp.Scenario(GRID, (0, 0), (9, 9), obstacles=[box])
+    for call in (lambda: world.occupancy(math.nan), lambda: world.target([1]), lambda: world.holds((1, 2), (4, 4)),
+                 lambda: box.footprint(None), lambda: box.present("3")):
+        with pytest.raises(ValueError, match="tick must be a number"):
+            call()
+    with pytest.raises(ValueError, match="cell must be"):
+        world.parked_over(3, (4.5, 4))
+    assert world.occupancy(np.int64(2))[4, 3] and world.holds(2, (4, 3))
+    with pytest.raises(ValueError, match="seed must be an integer, got nan"):
+        maze(9, 1, math.nan)
+    walled = np.zeros((12, 12), bool)
+    walled[6, 6] = True
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        steep = tdp.GridMap(walled).inflate(1.0, cost_scaling_factor=1e12, inflation_radius=3.0)
+        flat = tdp.GridMap(np.zeros((12, 12), bool)).inflate(1.0, cost_scaling_factor=0.0, inflation_radius=3.0).cost
+    assert steep.occupied.sum() == 5 and (steep.cost[~steep.occupied] == 1.0).all() and (flat == 1.0).all()
 
 
 def test_a_map_wider_than_the_engine_packs_is_a_clear_error():
