@@ -11,6 +11,7 @@ import numpy as np
 import pybullet as p
 
 import tdp
+from tdp import checks
 from tdp.contract import Mode, TickResult, WorldFeed, detection_records, landmarks, timing_summary
 from tdp.simulate import oracle_run
 
@@ -62,8 +63,10 @@ class SimConfig:
                 continue
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
-        if self.physics_hz < self.control_hz or self.physics_hz % self.control_hz:
-            raise ValueError("physics_hz must be a multiple of control_hz")
+        for name in ("physics_hz", "control_hz", "frame_every"):
+            checks.integer(getattr(self, name), name, 1)
+        if self.physics_hz % self.control_hz:
+            raise ValueError(f"physics_hz must be a multiple of control_hz, got {self.physics_hz} and {self.control_hz}")
 
     def costs(self, occupied: np.ndarray, cell_m: float, world_cost: np.ndarray | None) -> np.ndarray | None:
         """The planner's traversal costs over ``occupied`` (the grown obstacles, cells of ``cell_m`` metres): the
@@ -232,6 +235,19 @@ class _Run:
         return math.hypot(gx - x, gy - y) <= self.sim.goal_tolerance_m
 
 
+def _check_episode(scenario, config, sim, gui, frames) -> None:
+    """:func:`run_episode`'s arguments are of their kinds, else a ValueError naming the first that is not."""
+    for value, kind, name, called in ((scenario, tdp.Scenario, "scenario", "tdp.Scenario"),
+                                      (config, tdp.NavigatorConfig, "config", "tdp.NavigatorConfig"),
+                                      (sim, SimConfig, "sim", "sim.episode.SimConfig")):
+        if not isinstance(value, kind):
+            raise ValueError(f"{name} must be a {called}, got {type(value).__name__}")
+    checks.flag(gui, "gui")
+    if frames is not None and not isinstance(frames, list):
+        raise ValueError(f"frames must be a list (the pictures are appended to it) or None, got "
+                         f"{type(frames).__name__}")
+
+
 class TopCamera:
     """The simulator's camera straight above the map's centre, seeing the whole map (TinyRenderer: works headless)."""
 
@@ -258,7 +274,13 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     """Run ``scenario`` in PyBullet and return its metrics (lengths in metres, times in seconds). With ``frames``
     (a list), the simulator's own camera looks down on the world every ``sim.frame_every`` ticks and at the end
     (a run that starts at its goal has that picture alone), and each picture (an (H, W, 3) uint8 array) is appended
-    to it."""
+    to it.
+
+    Raises:
+        ValueError: an argument of the wrong kind; no room for the robot at the start or the goal; a budget longer
+            than a tick; ``gui`` without a display.
+    """
+    _check_episode(scenario, config, sim, gui, frames)
     client = connect(gui)
     try:
         run = _Run(scenario, config, sim, client)

@@ -137,6 +137,32 @@ def test_a_coarse_map_keeps_the_episodes_metrics_where_its_oracle_has_no_room():
     assert metrics["path_length_m"] > 0 and metrics["oracle_trajectory"] == []
 
 
+@pytest.mark.parametrize("settings, message", [
+    ({"control_hz": 0}, "control_hz must be an integer >= 1, got 0"),
+    ({"physics_hz": "240"}, "physics_hz must be an integer, got '240'"),
+    ({"frame_every": 0}, "frame_every must be an integer >= 1, got 0"),
+    ({"physics_hz": 250, "control_hz": 20}, "physics_hz must be a multiple of control_hz, got 250 and 20"),
+])
+def test_sim_settings_that_are_not_counts_are_value_errors(settings, message):
+    """A fuzz of SimConfig: control_hz 0 divided by zero, a rate given as text compared a str with an int, and
+    frame_every 0 would have divided by zero at the first frame."""
+    with pytest.raises(ValueError, match=message):
+        SimConfig(**settings)
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (("static",), "scenario must be a tdp.Scenario, got str"),
+    ((None, {"planner": "exact"}), "config must be a tdp.NavigatorConfig, got dict"),
+    ((None, tdp.NavigatorConfig(), {"margin_m": 0.1}), "sim must be a sim.episode.SimConfig, got dict"),
+    ((None, tdp.NavigatorConfig(), SimConfig(), "no"), "gui must be True or False"),
+])
+def test_run_episodes_arguments_of_the_wrong_kind_are_value_errors(arguments, message):
+    """They ended in an AttributeError from inside the run (or, for gui="no", asked for a display)."""
+    arguments = (tdp.scenarios.get("static"),) + arguments[1:] if arguments[0] is None else arguments
+    with pytest.raises(ValueError, match=message):
+        run_episode(*arguments)
+
+
 def test_a_world_the_grown_robot_cannot_cross_reports_no_oracle_length():
     """A gap of two 0.1 m cells lets the grid's point robot through but not the simulated one (obstacles grown by
     0.25 m): the robot waits and its oracle, on the same grown map, never reaches the goal. Its metrics said so with
