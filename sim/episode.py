@@ -66,7 +66,8 @@ class SimConfig:
         for name in ("physics_hz", "control_hz", "frame_every"):
             checks.integer(getattr(self, name), name, 1)
         if self.physics_hz % self.control_hz:
-            raise ValueError(f"physics_hz must be a multiple of control_hz, got {self.physics_hz} and {self.control_hz}")
+            raise ValueError(f"physics_hz must be a multiple of control_hz, got {self.physics_hz} and "
+                             f"{self.control_hz}")
 
     def costs(self, occupied: np.ndarray, cell_m: float, world_cost: np.ndarray | None) -> np.ndarray | None:
         """The planner's traversal costs over ``occupied`` (the grown obstacles, cells of ``cell_m`` metres): the
