@@ -91,18 +91,22 @@ def config_from(args: argparse.Namespace, planner: str, strict: bool = True):
     defaults (an option left out is None, or False for a switch). An option the planner does not read
     (:func:`tdp.config.fields_read`) is a ValueError naming it; with ``strict`` False it is left out (a command that
     runs every planner with the same options)."""
-    import tdp
-    from tdp.config import fields_read
+    from tdp.config import PLANNER_NAMES, NavigatorConfig, fields_read
 
-    given = {dest: getattr(args, dest) for dest in _CONFIG_OPTIONS if getattr(args, dest, None) is not None}
-    given = {dest: value for dest, value in given.items() if value is not False}
+    given = {dest: getattr(args, dest) for dest in _CONFIG_OPTIONS if _given(args, dest)}
     read = fields_read(planner)
     unread = ["--" + dest.replace("_", "-") for dest in given if _CONFIG_OPTIONS[dest] not in read]
     if unread and strict:
-        raise ValueError(f"{', '.join(unread)}: not read by {tdp.config.PLANNER_NAMES[planner]} (--planner "
-                         f"{planner})")
-    return tdp.NavigatorConfig(planner=planner, **{_CONFIG_OPTIONS[dest]: value for dest, value in given.items()
-                                                   if _CONFIG_OPTIONS[dest] in read})
+        raise ValueError(f"{', '.join(unread)}: not read by {PLANNER_NAMES[planner]} (--planner {planner})")
+    return NavigatorConfig(planner=planner, **{_CONFIG_OPTIONS[dest]: value for dest, value in given.items()
+                                               if _CONFIG_OPTIONS[dest] in read})
+
+
+def _given(args: argparse.Namespace, dest: str) -> bool:
+    """Whether the option of argparse destination ``dest`` was given (left out, it is None, or False for a switch;
+    0 is a value given)."""
+    value = getattr(args, dest, None)
+    return value is not None and value is not False
 
 
 def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
@@ -114,7 +118,7 @@ def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
 
     if not args.map:
         quick_only = _QUICK_ONLY + (() if costs_on_any_world else _COST_OPTIONS)
-        given = [flag for dest, flag in quick_only if getattr(args, dest) not in (None, False)]
+        given = [flag for dest, flag in quick_only if _given(args, dest)]
         if given:
             raise ValueError(f"{', '.join(given)}: options of a quick world on --map; --scenario and --world "
                              "are worlds of their own")
