@@ -217,6 +217,8 @@ MIN_RING = 1024
 #: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
 #: the cells), which 2**15 a side keeps well inside.
 MAX_SIDE = 1 << 15
+#: The most cells a map may have a side (its layers padded by PAD on each side fit MAX_SIDE).
+MAX_MAP_SIDE = MAX_SIDE - 2 * PAD
 #: Entries along each axis of the arrays ``warm_up`` hands a kernel for parameters no scratch layer holds.
 IDLE_ENTRIES = 16
 #: A layer's iteration number past which its stamps are rebased to 0, so that it never reaches _NEVER (2**30).
@@ -3274,10 +3276,10 @@ class _Layers(_LayerArrays):
 
 
 def _fitting(shape: tuple[int, int]) -> tuple[int, int]:
-    """A map's (rows, cols) if its layers fit the engine (``MAX_SIDE``), else a ValueError naming the shape."""
+    """A map's (rows, cols) if its layers fit the engine (``MAX_MAP_SIDE``), else a ValueError naming the shape."""
     rows, cols = shape
-    if max(rows, cols) + 2 * PAD > MAX_SIDE:
-        raise ValueError(f"a map may have at most {MAX_SIDE - 2 * PAD} cells a side, got {rows} x {cols}")
+    if max(rows, cols) > MAX_MAP_SIDE:
+        raise ValueError(f"a map may have at most {MAX_MAP_SIDE} cells a side, got {rows} x {cols}")
     return rows, cols
 
 

@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from . import checks
+from .engine import MAX_MAP_SIDE
 from .field import DistanceField
 from .grid import GridMap
 from .world import Obstacle, Scenario
@@ -36,11 +37,18 @@ CUTTING = ("rooms", "corridor", "clearing")
 
 
 def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
-    """A random world of ``family`` on a ``size`` x ``size`` map, from ``seed``; ``max_ticks`` is 6 x size."""
+    """A random world of ``family`` on a ``size`` x ``size`` map, from ``seed``; ``max_ticks`` is 6 x size.
+
+    Raises:
+        ValueError: an unknown family, ``size`` not an integer from 60 to the engine's largest map side
+            (``MAX_MAP_SIDE``), ``seed`` not an integer >= 0.
+    """
     if family not in FAMILIES:
         raise ValueError(f"unknown world family {family!r}; choose one of {', '.join(FAMILIES)}")
     if isinstance(size, bool) or not isinstance(size, int) or size < 60:
         raise ValueError(f"size must be an integer of at least 60 cells, got {size!r}")
+    if size > MAX_MAP_SIDE:  # numpy's own error inside a draw read as "no valid world", after 100 draws
+        raise ValueError(f"size must be at most {MAX_MAP_SIDE} cells (the engine's largest map), got {size}")
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
     rng = np.random.default_rng([FAMILIES.index(family), size, seed])

@@ -383,6 +383,8 @@ def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     assert world.occupancy(np.int64(2))[4, 3] and world.holds(2, (4, 3))
     with pytest.raises(ValueError, match="seed must be an integer, got nan"):
         maze(9, 1, math.nan)
+    with pytest.raises(ValueError, match=r"size must be at most 32764 cells \(the engine's largest map\), got 10+$"):
+        tdp.random_worlds.make_world("rooms", 10**30)  # numpy's error in every draw: "no valid world" after 100
     walled = np.zeros((12, 12), bool)
     walled[6, 6] = True
     with warnings.catch_warnings():

@@ -82,6 +82,8 @@ def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
     ("worlds: [{family: hallways}]\nplanners: [{planner: oracle}]", "unknown family 'hallways'"),
     ("worlds: [{family: rooms, seeds: -1}]\nplanners: [{planner: oracle}]", "worlds[0].seeds"),
     ("worlds: [{family: rooms, size: 20}]\nplanners: [{planner: oracle}]", "worlds[0].size"),
+    ("worlds: [{family: rooms, size: 40000}]\nplanners: [{planner: oracle}]",
+     "worlds[0].size must be an integer <= 32764"),
     ("worlds: [{family: rooms, scenario: static}]\nplanners: [{planner: oracle}]", "exactly one of"),
     ("worlds: [{world: missing.yaml}]\nplanners: [{planner: oracle}]", "missing.yaml"),
     ("worlds: [{scenario: static}]\nplanners: [{planner: plain-dp, nodes: 9}]", "'nodes' is not one of"),

@@ -49,6 +49,7 @@ import yaml
 
 from .. import checks
 from ..config import PLANNERS, STENCIL_FIELDS, NavigatorConfig, fields_read
+from ..engine import MAX_MAP_SIDE
 
 #: What a sweep's planners entry may name: the planners of a config, D* Lite and the oracle.
 SWEEP_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
@@ -219,7 +220,7 @@ def _worlds(entry, where: str, folder: Path) -> list[World]:
         for family in families:
             if family not in FAMILIES:
                 raise ValueError(f"{where}: unknown family {family!r}; choose one of {', '.join(FAMILIES)}")
-        sizes = [checks.integer(s, f"{where}.size", 60) for s in _listed(entry.get("size", 100))]
+        sizes = [checks.integer(s, f"{where}.size", 60, MAX_MAP_SIDE) for s in _listed(entry.get("size", 100))]
         return [World({"kind": kind, "family": family, "size": size, "seed": seed},
                       {"world": f"{family}-{size}-{seed}", "group": family, "size": size, "seed": seed})
                 for family in families for size in sizes for seed in _seeds(entry.get("seeds", 0), where)]
