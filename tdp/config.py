@@ -138,6 +138,8 @@ class NavigatorConfig:
         return planner_label(self.to_dict())
 
 
+#: Every NavigatorConfig field but ``planner``.
+CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
 #: The fields every planner reads: the moves allowed.
 STENCIL_FIELDS = ("neighbourhood", "corner_cutting")
 #: The fields only accelerating nodes read: the node lattice and the blockage test.
@@ -148,9 +150,8 @@ def fields_read(planner: str) -> tuple[str, ...]:
     """The :class:`NavigatorConfig` fields besides ``planner`` that ``planner`` (one of PLANNERS) reads: the
     stencil, ``d_max`` and ``budget_ms`` for exact replanning, all but the node lattice's for plain DP, all for
     accelerating nodes. Sweep specs and command lines refuse the others rather than ignore them."""
-    every = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
     return {"exact": STENCIL_FIELDS + ("d_max", "budget_ms"),
-            "plain-dp": tuple(f for f in every if f not in NODE_FIELDS)}.get(planner, every)
+            "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS)}.get(planner, CONFIG_FIELDS)
 
 
 def planner_label(config: dict) -> str:

@@ -42,18 +42,17 @@ import hashlib
 import importlib
 import itertools
 import json
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
 
 from .. import checks
-from ..config import PLANNERS, STENCIL_FIELDS, NavigatorConfig, fields_read
+from ..config import CONFIG_FIELDS, PLANNERS, STENCIL_FIELDS, NavigatorConfig, fields_read
 from ..engine import MAX_MAP_SIDE
 
 #: What a sweep's planners entry may name: the planners of a config, D* Lite and the oracle.
 SWEEP_PLANNERS = ("exact", "accelerating", "plain-dp", "dstar-lite", "oracle")
-CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
 WORLD_KINDS = ("family", "scenario", "world", "map")
 #: The most seeds one entry of ``worlds`` may count (seeds: {first, count}): each is a world kept in the spec's list.
 MAX_SEEDS = 100_000
