@@ -25,8 +25,6 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
         return 130
 
 
-#: A quick world's shuttling boxes unless ``--boxes`` says otherwise.
-QUICK_BOXES = 3
 #: (argparse destination, flag) of the options that shape a quick world on ``--map`` only, and of the cost options.
 _QUICK_ONLY = (("start", "--start"), ("goal", "--goal"), ("boxes", "--boxes"), ("seed", "--seed"),
                ("blockage", "--blockage"), ("graded", "--graded"))
@@ -44,7 +42,7 @@ def add_world_arguments(parser: argparse.ArgumentParser) -> None:
     quick = parser.add_argument_group("quick world on --map")
     quick.add_argument("--start", nargs=2, type=int, metavar=("ROW", "COL"))
     quick.add_argument("--goal", nargs=2, type=int, metavar=("ROW", "COL"))
-    quick.add_argument("--boxes", type=int, help=f"shuttling boxes (default {QUICK_BOXES})")
+    quick.add_argument("--boxes", type=int, help="shuttling boxes (default 3)")
     quick.add_argument("--seed", type=int, help="seed of the boxes (default 0)")
     quick.add_argument("--blockage", action="store_true", help="a box appears in a narrow place of the route")
     add_cost_arguments(quick)
@@ -127,10 +125,11 @@ def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
     if args.map:
         if args.start is None or args.goal is None:
             raise ValueError("--map needs --start ROW COL and --goal ROW COL")
-        boxes, seed = (QUICK_BOXES if args.boxes is None else args.boxes), (args.seed or 0)
-        if boxes < 0 or seed < 0:
-            raise ValueError(f"--boxes and --seed must be >= 0, got {boxes} and {seed}")
-        return boxes_on_map(map_from(args), tuple(args.start), tuple(args.goal), boxes, seed, args.blockage)
+        given = {dest: getattr(args, dest) for dest in ("boxes", "seed") if _given(args, dest)}  # else its defaults
+        negative = [f"--{dest} {value}" for dest, value in given.items() if value < 0]
+        if negative:
+            raise ValueError(f"{', '.join(negative)}: must be >= 0")
+        return boxes_on_map(map_from(args), tuple(args.start), tuple(args.goal), blockage=args.blockage, **given)
     return tdp.scenarios.get(args.scenario)
 
 
