@@ -16,9 +16,9 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
   bit per lane (1 blocked), so that the penalties of 32 lanes take the memory of one (``crossing``).
 
 Kernels come from ``_kernels_for``, one set per compile-time spec - lanes (0 for the goal layer, LANES for node
-windows), neighbourhood, corner rule - closed over as constants, built from small rule factories (``_lane_rules``,
-``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``, ``_search_rules``, ``_paint_rules`` ...)
-by one kernel factory per phase: iterate, settle, search (the goal layer), fill (node windows), set up, edit, read.
+windows), neighbourhood, corner rule, weighted, absorbing - closed over as constants, built from small rule
+factories (``_lane_rules``, ``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``,
+``_search_rules``, ``_paint_rules`` ...) by one kernel factory per phase: iterate, settle, search (the goal layer), fill (node windows), set up, edit, read.
 A launch's several parameters travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays``:
 arrays, edits, reads; ``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells,
 source), cap and origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up``
@@ -165,6 +165,23 @@ RACE_HEAD_SHARE = 1 / 8
 SEED_PASS = 32
 SEED_AFTER = 2
 _SEED_MOST = 1 << 24  # a seeded race's bound is below this: float32 holds every whole number up to it
+#: From this value on, float32 may round a value plus a move (at least 1) back to the value; a scalar layer's move
+#: then adds at least one float32 step (``_cell_rules``' ``plus``, ARCHITECTURE §4).
+ABSORBING = float(1 << 24)
+_INF_BITS = 0x7F800000  # float32 +inf's bits: a non-negative float32's bits order as the float does
+
+
+def may_absorb(cells: int, max_cost: float, cap: float) -> bool:
+    """Whether a scalar layer of ``cells`` cells, free cells costing at most ``max_cost``, may hold a value from
+    ABSORBING on below its ``cap``: a route visits a cell once, and a move adds at most sqrt 5 x the dearest cost."""
+    return min(cap, cells * math.sqrt(5) * max_cost) >= ABSORBING
+
+
+@ti.func
+def _above(value):
+    """The next float32 above non-negative ``value`` (inf stays inf), by its bits."""
+    return ti.bit_cast(ti.min(ti.bit_cast(value, ti.i32) + 1, _INF_BITS), ti.f32)
+
 #: The parts a mend's ``cut_off`` follows at most (free cells beside the cells its edits blocked, each a part until
 #: parts meet): a larger edit - a map loaded anew - goes straight to the raise.
 CUT_PARTS = 4096
@@ -765,10 +782,11 @@ def _lane_rules(lanes: int, weighted: bool) -> SimpleNamespace:
                            band=SETTLE_BAND if lanes == 0 else PACKED_SETTLE_BAND)
 
 
-def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
+def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = False) -> SimpleNamespace:
     """The per-cell ti.funcs of a layer kind with ``lanes`` packed layers (0: scalar) and the stencil ``moves``,
     closed over as compile-time constants: :func:`_lane_rules` and a cell's relaxation, successor and window. A
-    ``weighted`` (scalar) layer's move of length L from V to Z costs L x (cost[V] + cost[Z]) / 2."""
+    ``weighted`` (scalar) layer's move of length L from V to Z costs L x (cost[V] + cost[Z]) / 2; an ``absorbing``
+    (scalar) layer's may hold values from ABSORBING on, and a move adds at least one float32 step (``plus``)."""
     lane = _lane_rules(lanes, weighted)
     broadcast, component, lanes_in, blocked_lanes = lane.broadcast, lane.component, lane.lanes_in, lane.blocked_lanes
     width = lane.width
@@ -802,6 +820,15 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         return out
 
     @ti.func
+    def plus(there, cost):
+        """``there`` + ``cost``, a value plus a move; on an ``absorbing`` layer at least the next float32 above
+        ``there`` (from ABSORBING on float32 rounds a move of 1 back to the value: ARCHITECTURE §4)."""
+        out = there + cost
+        if ti.static(absorbing):
+            out = ti.max(out, _above(there))
+        return out
+
+    @ti.func
     def move_cost(pen: ti.template(), g, i, j, m: ti.template()):
         """The cost of move ``m`` from (i, j): its length, or weighted, its length x the mean of the two cells'
         costs (inf when the target is blocked)."""
@@ -825,7 +852,7 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         (a compare and a blend more per move), and no value here is NaN (the sums are finite or +inf)."""
         best = broadcast(cap)
         for m in ti.static(moves):
-            cand = crossing(src[g, i + m.dr, j + m.dc] + move_cost(pen, g, i, j, m), pen, g, i, j, m.crossed)
+            cand = crossing(plus(src[g, i + m.dr, j + m.dc], move_cost(pen, g, i, j, m)), pen, g, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
         return pinned(best, pen, header, cap, g, i, j)
 
@@ -837,9 +864,9 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         best, value, leans = cap, src[0, i, j], 0
         for k, m in ti.static(tuple(enumerate(moves))):
             there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
-            cand = crossing(there + cost, pen, 0, i, j, m.crossed)
+            cand = crossing(plus(there, cost), pen, 0, i, j, m.crossed)
             best = ti.select(cand < best, cand, best)
-            leans |= ti.select(there == value + cost, 1 << k, 0)
+            leans |= ti.select(there == plus(value, cost), 1 << k, 0)
         return pinned(best, pen, header, cap, 0, i, j), leans
 
     @ti.func
@@ -849,7 +876,7 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
         found = -1
         index = 0
         for m in ti.static(moves):
-            cand = component(values[g, i + m.dr, j + m.dc] + move_cost(pen, g, i, j, m), lane)
+            cand = component(plus(values[g, i + m.dr, j + m.dc], move_cost(pen, g, i, j, m)), lane)
             for c in ti.static(m.crossed):
                 cand += penalty(pen, g, i + c[0], j + c[1], lane)
             if cand < best:
@@ -869,7 +896,8 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool) -> SimpleNamespace:
     # the moves that cross no cell: every other move's crossed cells must be free and make a way of these from one end
     # to the other (ARCHITECTURE §4), so they join the same cells as the whole stencil (a mend's floods step by them)
     steps = tuple(m for m in moves if not m.crossed)
-    return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, updated=updated,
+    return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, plus=plus,
+                           updated=updated,
                            leaning=leaning, successor_move=successor_move, window_cell=window_cell, moves=moves,
                            steps=steps)
 
@@ -1362,7 +1390,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     (``_race_rules``: a race that loses puts them back). A cell taken reads the penalties of its 3 x 3 block once
     (``around``), and tries the moves through a corner of it (``stencil.through_corner``) only when one of its four
     corners is free: a one-cell corridor's cells try the four straight moves alone."""
-    moves, move_cost, penalty = cell.moves, cell.move_cost, cell.penalty
+    moves, move_cost, penalty, plus = cell.moves, cell.move_cost, cell.penalty, cell.plus
     buckets = _bucket_rules()
     unlink, link, clear, take_first = buckets.unlink, buckets.link, buckets.clear, buckets.take_first
     straight = tuple(m for m in moves if not stencil.through_corner(m))
@@ -1429,7 +1457,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
         rarely taken -, and list it in the bucket of its priority; returns ``listed`` plus the cells newly listed."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         u, v = i - m.dr, j - m.dc
-        cand = value + move_cost(pen, 0, u, v, m)
+        cand = plus(value, move_cost(pen, 0, u, v, m))
         for c in ti.static(m.crossed):
             cand += block[c[0] - m.dr + 1, c[1] - m.dc + 1]
         if ti.static(abs(m.dr) <= 1 and abs(m.dc) <= 1):
@@ -2660,8 +2688,8 @@ def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
-    stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs - closed over as
-    constants, made by one factory per phase (iterate, settle, search or fill, set up, edit, read) and named on this
+    stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs, whether values
+    may be ``absorbing`` (``may_absorb``) - closed over as constants, made by one factory per phase (iterate, settle, search or fill, set up, edit, read) and named on this
     object. The decorator that makes each kernel also records it in :attr:`all`, which :meth:`_Layers.warm_up`
     walks, so no kernel escapes the warm-up. Build them with :func:`_kernels_for`, which caches one set per spec.
 
@@ -2671,10 +2699,11 @@ class _Kernels:
     ``_IterateRun``, ``_SettleRun``, ``_SearchRun``, ``_MendRun``, ``_PaintRun``, as :func:`_launch` makes it),
     followed by what it hands back (``_SettleResult``, ``_SearchResult``, ``_MendResult``)."""
 
-    def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool):
+    def __init__(self, lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool, absorbing: bool):
         init_taichi()
-        self.lanes, self.weighted = lanes, weighted
-        cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting), weighted)
+        self.lanes, self.weighted, self.absorbing = lanes, weighted, absorbing
+        self.neighbourhood, self.corner_cutting = neighbourhood, corner_cutting
+        cell = _cell_rules(lanes, stencil.moves(neighbourhood, corner_cutting), weighted, absorbing)
         types = _KernelTypes(lanes)
         made = []
 
@@ -2693,9 +2722,10 @@ class _Kernels:
 
 
 @functools.lru_cache(maxsize=None)
-def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool = False) -> _Kernels:
+def _kernels_for(lanes: int, neighbourhood: int, corner_cutting: bool, weighted: bool = False,
+                 absorbing: bool = False) -> _Kernels:
     """The kernels of one compile-time spec, built once per process (Taichi compiles each on its first launch)."""
-    return _Kernels(lanes, neighbourhood, corner_cutting, weighted)
+    return _Kernels(lanes, neighbourhood, corner_cutting, weighted, absorbing)
 
 
 def _idle_argument(parameter: inspect.Parameter, scratch: "_Layers"):
@@ -2867,16 +2897,19 @@ class _LayerArrays:
 
     def paint(self, cells: np.ndarray, penalties: np.ndarray) -> None:
         """Set the penalties of ``cells`` (0 free, inf occupied; a weighted layer's free cells their cost, which
-        widens the search's ring if it needs more buckets: made again at the next search) and wake the tiles around
-        them. The goal layer holds the edit back (:attr:`unpainted`): the converge that follows paints it in its own
-        launch (a mend, or the first launch of rounds on the calling thread), and anything else that reads the
-        arrays paints it first."""
+        widens the search's ring if it needs more buckets: made again at the next search, and takes the absorbing
+        kernels once values may reach ABSORBING: ``may_absorb``) and wake the tiles around them. The goal layer holds
+        the edit back (:attr:`unpainted`): the converge that follows paints it in its own launch (a mend, or the
+        first launch of rounds on the calling thread), and anything else that reads the arrays paints it first."""
         if self.kernels.weighted:
             dearest = float(np.max(penalties, where=penalties <= MAX_COST, initial=1.0))
             self.longest_move = max(self.longest_move, _longest_move(dearest))
             ring = _search_buckets(dearest)
             if ring > self.ring:
                 self.ring, self.links, self.race_links = ring, None, None
+            kernels = self.kernels
+            if not kernels.absorbing and may_absorb(self.rows * self.cols, dearest, self.cap):
+                self.kernels = _kernels_for(0, kernels.neighbourhood, kernels.corner_cutting, True, True)
         if not self.lanes:
             self.unpainted.append((cells, penalties))
         else:
@@ -3372,11 +3405,12 @@ class Engine:
         self.nodes = np.zeros((0, 2), np.int32) if nodes is None else np.asarray(nodes, np.int32).reshape(-1, 2)
         self.iterations = 0
 
-        def kernels(lanes: int, weighted: bool = False) -> _Kernels:
-            return _kernels_for(lanes, self.neighbourhood, self.corner_cutting, weighted)
+        def kernels(lanes: int, weighted: bool = False, absorbing: bool = False) -> _Kernels:
+            return _kernels_for(lanes, self.neighbourhood, self.corner_cutting, weighted, absorbing)
 
         max_cost = 1.0 if self.cost is None else float(self.cost[~self.occupied].max(initial=1.0))
-        self._goal = _Layers(kernels(0, self.cost is not None), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
+        absorbing = may_absorb(self.rows * self.cols, max_cost, self.goal_cap)
+        self._goal = _Layers(kernels(0, self.cost is not None, absorbing), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
                              (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap, max_cost)
         self._layers = [self._goal]
         if len(self.nodes):

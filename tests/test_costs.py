@@ -105,6 +105,74 @@ def test_repairs_after_random_cost_edits_equal_dijkstra_on_the_new_costs(case, n
                                                                 cost=np.where(now, 1.0, costs)))
 
 
+def dear_corridor() -> tdp.GridMap:
+    """A hall (goal side, left) joined to a room (right) by a corridor of cells costing 1e6: the room's distances pass
+    2**24, where float32 rounds a move of 1 back to the value it is added to."""
+    occupied, cost = np.zeros((40, 90), bool), np.ones((40, 90))
+    occupied[:, 40:60] = True
+    occupied[20, 40:60] = False
+    cost[20, 40:60] = 1e6
+    return tdp.GridMap(occupied, cost=cost)
+
+
+@pytest.mark.parametrize("neighbourhood", [4, 8, 16])
+def test_distances_past_float32s_whole_numbers_still_fall_along_every_route(neighbourhood):
+    """Each move adds at least one float32 step (ARCHITECTURE §4): a route from every cell of the room reaches the
+    goal, its values falling at each step (before, the room's cells took equal values and their successors led round
+    in rings: no route from any), and iterations from the initial state reach the converge's values bit for bit."""
+    grid, goal = dear_corridor(), (20, 5)
+    field = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    field.converge()
+    distances = field.distances()
+    assert distances[:, 60:].min() > 2**24
+    assert_distances_match(distances, reference(grid, goal, neighbourhood, False), rtol=1e-5)
+    for start in [(0, 89), (39, 60), (20, 75), (5, 61)]:
+        path = field.path(start)
+        values = [distances[cell] for cell in path]
+        assert path[-1] == goal and all(a > b for a, b in zip(values, values[1:]))
+    iterated = tdp.DistanceField(grid, goal, neighbourhood=neighbourhood)
+    while iterated.step(1):
+        pass
+    np.testing.assert_array_equal(iterated.distances(), distances)
+
+
+@pytest.mark.parametrize("before", ["nothing", "iterations", "a focused converge"])
+def test_a_room_past_float32s_whole_numbers_cut_off_rises_to_inf(before):
+    """The corridor closed: the room's cells rise to inf by a mend (at the fixed point), or by rounds of tiles (after
+    iterations or a focused converge left work pending); before, two cells of equal value held each other up."""
+    grid, goal = dear_corridor(), (20, 5)
+    field = tdp.DistanceField(grid, goal)
+    field.converge()
+    field.set_occupied([(20, 50)])
+    if before == "iterations":
+        field.step(2)
+    elif before == "a focused converge":
+        field.converge(focus=(20, 30))
+    field.converge()
+    assert np.isinf(field.distances()[:, 50:]).all()
+    fresh = tdp.DistanceField(tdp.GridMap(field.occupied, cost=grid.cost), goal)
+    fresh.converge()
+    np.testing.assert_array_equal(field.distances(), fresh.distances())
+
+
+def test_a_map_whose_costs_rise_past_float32s_whole_numbers_takes_the_kernels_for_them():
+    """Costs of 1 everywhere at first (the plain kernels: no distance can reach 2**24), then the corridor's set to
+    1e6: the field's values and routes are a fresh converge's, and closing the corridor sends the room to inf."""
+    dear, goal = dear_corridor(), (20, 5)
+    field = tdp.DistanceField(tdp.GridMap(dear.occupied, cost=np.ones(dear.shape)), goal)
+    field.converge()
+    corridor = dear.cost > 1
+    field.set_costs(corridor, 1e6)
+    field.converge()
+    fresh = tdp.DistanceField(dear, goal)
+    fresh.converge()
+    np.testing.assert_array_equal(field.distances(), fresh.distances())
+    assert field.path((0, 89))[-1] == goal
+    field.set_occupied([(20, 50)])
+    field.converge()
+    assert np.isinf(field.distances()[:, 50:]).all()
+
+
 def test_cost_edits_need_a_map_with_costs_and_costs_from_1_to_max_cost():
     field = tdp.DistanceField(tdp.GridMap(np.zeros((5, 5), bool)), (0, 0))
     with pytest.raises(ValueError, match="binary"):
