@@ -13,6 +13,11 @@ from the walls a path keeps with nav2's inflation cost than on the binary map, a
 fields, for every planner driving through shuttling boxes at grid level (EPISODE_PAIRS pairs a map, the same boxes
 on both maps), and in PyBullet (the named scenarios and the TurtleBot3 world, the inflation cost round walls and
 boxes: ``SimConfig(cost_scaling_factor, inflation_radius)``).
+
+Dear cells: a hall joined to a room by a corridor whose cells cost ``DEAR_COSTS`` (1 to 1e6), so that the room's
+distances reach 2**24 and past, where float32 stops telling a move of 1 apart (ARCHITECTURE §4): the converge from
+scratch against scipy's Dijkstra solve on the same weighted graph (timed in turn), the largest distance, whether the
+field equals Dijkstra's, and the repair after a 3 x 3 box in the room.
 """
 from __future__ import annotations
 
@@ -25,6 +30,7 @@ from scipy.sparse.csgraph import dijkstra
 
 import tdp
 from benchmarks.common import paired_times, print_table, quick_parser, save_results
+from tdp.engine import ABSORBING
 from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, ROOT, largest_free_region, ros_cases, route_middle
 from benchmarks.reference_graph import grid_graph
 from tdp.random_worlds import maze
@@ -41,6 +47,7 @@ ROS_MAPS = [("turtlebot3_world", ROOT / "tests" / "data" / "turtlebot3_world" / 
             ("nav2 warehouse", NAV2 / "warehouse.yaml"), ("nav2 depot", NAV2 / "depot.yaml")]
 PAIRS = 8
 EQUAL_RTOL = 1e-4
+DEAR_COSTS = [1.0, 1e2, 1e4, 1e5, 1e6]  # a corridor cell's cost (``dear_rows``)
 
 
 def maps(quick: bool) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
@@ -115,6 +122,53 @@ def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats
         ratios.append(pair[0] / pair[1])
         times.append(pair[0])
     return float(np.median(ratios[1:])), float(np.median(times[1:])) * 1e3
+
+
+def dear_corridor(rows: int, dear: float) -> tuple[tdp.GridMap, tuple[int, int]]:
+    """A hall (rows x 5/3 rows, the goal at the middle of its left side) joined to a room (rows x rows / 2) by a
+    corridor of rows / 3 cells, each costing ``dear``; the rest costs 1."""
+    hall, corridor, room = 5 * rows // 3, rows // 3, rows // 2
+    occupied = np.zeros((rows, hall + corridor + room), bool)
+    cost = np.ones(occupied.shape)
+    occupied[:, hall:hall + corridor] = True
+    occupied[rows // 2, hall:hall + corridor] = False
+    cost[rows // 2, hall:hall + corridor] = dear
+    return tdp.GridMap(occupied, cost=cost), (rows // 2, 2)
+
+
+def dear_rows(quick: bool, repeats: int) -> list[dict]:
+    """Per corridor cost: converge from scratch against scipy's Dijkstra solve, in turn; the largest distance;
+    the field against Dijkstra's (EQUAL_RTOL); the repair after a 3 x 3 box in the middle of the room."""
+    rows_cells = 60 if quick else 120
+    out = []
+    for dear in DEAR_COSTS[::2] if quick else DEAR_COSTS:
+        grid, goal = dear_corridor(rows_cells, dear)
+        field = tdp.DistanceField(grid, goal)
+        field.converge()
+        graph = grid_graph(grid.occupied, cost=grid.cost).T.tocsr()
+        source = goal[0] * grid.shape[1] + goal[1]
+        ours_s, scipy_s, ratio = paired_times(lambda: (field.reset(), field.converge()),
+                                              lambda: dijkstra(graph, indices=source), repeats)
+        reference = dijkstra(graph, indices=source).reshape(grid.shape)
+        ours, finite = field.distances(), np.isfinite(reference)
+        equal = bool(np.array_equal(np.isfinite(ours), finite)
+                     and np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
+        centre = (rows_cells // 2, grid.shape[1] - rows_cells // 4)
+        box = [(centre[0] + i, centre[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
+        repairs = []
+        for _ in range(repeats + 1):
+            field.set_occupied(box)
+            began = time.perf_counter()
+            field.converge()
+            repairs.append(time.perf_counter() - began)
+            field.set_occupied(box, False)
+            field.converge()
+        out.append({"dear": dear, "cells": grid.occupied.size, "largest": float(reference[finite].max()),
+                    "past_absorbing": bool(reference[finite].max() >= ABSORBING), "scratch_ms": ours_s * 1e3,
+                    "dijkstra_ms": scipy_s * 1e3, "ratio": ratio, "equal": equal,
+                    "repair_ms": float(np.median(repairs[1:])) * 1e3})
+        print(f"  dear corridor, cost {dear:g}: done", flush=True)
+    return out
 
 
 def inflated(grid: tdp.GridMap) -> tuple[tdp.GridMap, tdp.GridMap]:
@@ -298,6 +352,12 @@ def main() -> None:
                 [[r["map"], r["cost"], f"{r['scratch_ms']:.2f}", f"{r['binary_scratch_ms']:.2f}",
                   f"{r['scratch_ratio']:.2f}", f"{r['repair_ms']:.2f}", f"{r['repair_ratio']:.2f}", str(r["equal"])]
                  for r in rows])
+    dear = dear_rows(args.quick, repeats)
+    print_table(["corridor cost", "cells", "largest distance", "converge ms", "Dijkstra ms", "ratio",
+                 "box repair ms", "equal to scipy"],
+                [[f"{r['dear']:g}", str(r["cells"]), f"{r['largest']:.4g}", f"{r['scratch_ms']:.2f}",
+                  f"{r['dijkstra_ms']:.2f}", f"{r['ratio']:.2f}", f"{r['repair_ms']:.2f}", str(r["equal"])]
+                 for r in dear])
     paths = clearance(args.quick)
     print_table(["map", "pair", "clearance, costed / binary", "length, costed / binary"],
                 [[r["map"], str(r["pair"]), f"{r['clearance_ratio']:.2f}", f"{r['length_ratio']:.2f}"] for r in paths])
@@ -308,7 +368,7 @@ def main() -> None:
     grid_rows, bullet_rows = grid_episodes(args.quick), pybullet_episodes(args.quick)
     print_episodes(grid_rows, bullet_rows)
     written = save_results("costs-quick" if args.quick else "costs",
-                           {"rows": rows, "clearance": paths, "grid_episodes": grid_rows,
+                           {"rows": rows, "dear": dear, "clearance": paths, "grid_episodes": grid_rows,
                             "pybullet_episodes": bullet_rows}, lambda path: figure(rows, path))
     figure_path = written.with_name("costs-paths-quick.png" if args.quick else "costs-paths.png")
     paths_figure(paths, figure_path)
