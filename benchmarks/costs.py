@@ -92,14 +92,29 @@ def measure(name: str, occupied: np.ndarray, goal, kind: str, repeats: int) -> d
     weighted_s, binary_s, scratch_ratio = paired_times(scratch(weighted), scratch(binary), repeats)
     reference = dijkstra(grid_graph(occupied, cost=grid.cost).T, indices=goal[0] * occupied.shape[1] + goal[1])
     reference = reference.reshape(occupied.shape)
-    ours = weighted.distances()
-    finite = np.isfinite(reference)
-    equal = bool(np.array_equal(np.isfinite(ours), finite)
-                 and np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
+    equal = equal_to_dijkstra(weighted.distances(), reference)
     repair_ratio, repair_ms = repair_pairs(binary, weighted, repeats)
     return {"map": name, "cost": kind, "cells": occupied.size, "scratch_ms": weighted_s * 1e3,
             "binary_scratch_ms": binary_s * 1e3, "scratch_ratio": scratch_ratio, "repair_ms": repair_ms,
             "repair_ratio": repair_ratio, "equal": equal}
+
+
+def equal_to_dijkstra(ours: np.ndarray, reference: np.ndarray) -> bool:
+    """Whether a field is inf where scipy's Dijkstra is and within EQUAL_RTOL of it elsewhere."""
+    finite = np.isfinite(reference)
+    return bool(np.array_equal(np.isfinite(ours), finite)
+                and np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
+
+
+def box_repair_s(field: tdp.DistanceField, box: list[tuple[int, int]]) -> float:
+    """Seconds of the converge after ``box`` is blocked; the box is then freed and converged again."""
+    field.set_occupied(box)
+    began = time.perf_counter()
+    field.converge()
+    took_s = time.perf_counter() - began
+    field.set_occupied(box, False)
+    field.converge()
+    return took_s
 
 
 def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats: int) -> tuple[float, float]:
@@ -111,14 +126,7 @@ def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats
            and 0 <= c + j < weighted.occupied.shape[1] and not weighted.occupied[r + i, c + j]]
     ratios, times = [], []
     for _ in range(repeats + 1):
-        pair = []
-        for field in (weighted, binary):
-            field.set_occupied(box)
-            began = time.perf_counter()
-            field.converge()
-            pair.append(time.perf_counter() - began)
-            field.set_occupied(box, False)
-            field.converge()
+        pair = [box_repair_s(field, box) for field in (weighted, binary)]
         ratios.append(pair[0] / pair[1])
         times.append(pair[0])
     return float(np.median(ratios[1:])), float(np.median(times[1:])) * 1e3
@@ -150,21 +158,12 @@ def dear_rows(quick: bool, repeats: int) -> list[dict]:
         ours_s, scipy_s, ratio = paired_times(lambda: (field.reset(), field.converge()),
                                               lambda: dijkstra(graph, indices=source), repeats)
         reference = dijkstra(graph, indices=source).reshape(grid.shape)
-        ours, finite = field.distances(), np.isfinite(reference)
-        equal = bool(np.array_equal(np.isfinite(ours), finite)
-                     and np.allclose(ours[finite], reference[finite], rtol=EQUAL_RTOL))
+        largest, equal = float(reference[np.isfinite(reference)].max()), equal_to_dijkstra(field.distances(), reference)
         centre = (rows_cells // 2, grid.shape[1] - rows_cells // 4)
         box = [(centre[0] + i, centre[1] + j) for i in (-1, 0, 1) for j in (-1, 0, 1)]
-        repairs = []
-        for _ in range(repeats + 1):
-            field.set_occupied(box)
-            began = time.perf_counter()
-            field.converge()
-            repairs.append(time.perf_counter() - began)
-            field.set_occupied(box, False)
-            field.converge()
-        out.append({"dear": dear, "cells": grid.occupied.size, "largest": float(reference[finite].max()),
-                    "past_absorbing": bool(reference[finite].max() >= ABSORBING), "scratch_ms": ours_s * 1e3,
+        repairs = [box_repair_s(field, box) for _ in range(repeats + 1)]
+        out.append({"dear": dear, "cells": grid.occupied.size, "largest": largest,
+                    "past_absorbing": largest >= ABSORBING, "scratch_ms": ours_s * 1e3,
                     "dijkstra_ms": scipy_s * 1e3, "ratio": ratio, "equal": equal,
                     "repair_ms": float(np.median(repairs[1:])) * 1e3})
         print(f"  dear corridor, cost {dear:g}: done", flush=True)
