@@ -18,7 +18,8 @@ The only module of tdp that imports taichi. Layout (ARCHITECTURE §4):
 Kernels come from ``_kernels_for``, one set per compile-time spec - lanes (0 for the goal layer, LANES for node
 windows), neighbourhood, corner rule, weighted, absorbing - closed over as constants, built from small rule
 factories (``_lane_rules``, ``_cell_rules``, ``_relax_rules``, ``_sweep_rules``, ``_settle_rules``,
-``_search_rules``, ``_paint_rules`` ...) by one kernel factory per phase: iterate, settle, search (the goal layer), fill (node windows), set up, edit, read.
+``_search_rules``, ``_paint_rules`` ...) by one kernel factory per phase: iterate, settle, search (the goal layer),
+fill (node windows), set up, edit, read.
 A launch's several parameters travel as a named tuple (``_SettleRun`` ...). Each kind of layer (``_LayerArrays``:
 arrays, edits, reads; ``_Layers``: the work on them) knows its kernels, buffers, penalties, header (changed cells,
 source), cap and origins under the names of the kernels' parameters, and calls them with keywords. ``warm_up``
@@ -2706,9 +2707,10 @@ def _read_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 class _Kernels:
     """The kernels of one compile-time spec - ``lanes`` packed layers per cell (0: the scalar goal layer), the
     stencil's ``neighbourhood`` and corner rule, whether moves are ``weighted`` by the cells' costs, whether values
-    may be ``absorbing`` (``may_absorb``) - closed over as constants, made by one factory per phase (iterate, settle, search or fill, set up, edit, read) and named on this
-    object. The decorator that makes each kernel also records it in :attr:`all`, which :meth:`_Layers.warm_up`
-    walks, so no kernel escapes the warm-up. Build them with :func:`_kernels_for`, which caches one set per spec.
+    may be ``absorbing`` (``may_absorb``) - closed over as constants, made by one factory per phase (iterate,
+    settle, search or fill, set up, edit, read) and named on this object. The decorator that makes each kernel also
+    records it in :attr:`all`, which :meth:`_Layers.warm_up` walks, so no kernel escapes the warm-up. Build them
+    with :func:`_kernels_for`, which caches one set per spec.
 
     Parameter names say what they take: a layer's arrays (``src``, ``dst``, ``values``, ``pen``, ``stamps``,
     ``keys``, ``queue``, ``header``, ``origins``, see :class:`_Layers`) and its ``cap``; ``cells`` (n, 2) grid cells;
@@ -3427,8 +3429,9 @@ class Engine:
 
         max_cost = 1.0 if self.cost is None else float(self.cost[~self.occupied].max(initial=1.0))
         absorbing = may_absorb(self.rows * self.cols, max_cost, self.goal_cap)
-        self._goal = _Layers(kernels(0, self.cost is not None, absorbing), 1, (self.rows, self.cols), np.zeros((1, 2), np.int32),
-                             (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap, max_cost)
+        self._goal = _Layers(kernels(0, self.cost is not None, absorbing), 1, (self.rows, self.cols),
+                             np.zeros((1, 2), np.int32), (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap,
+                             max_cost)
         self._layers = [self._goal]
         if len(self.nodes):
             # a window reaching past the map on every side holds what a larger one would: the map, walled round
