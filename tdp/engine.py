@@ -170,6 +170,11 @@ _SEED_MOST = 1 << 24  # a seeded race's bound is below this: float32 holds every
 #: then adds at least one float32 step (``_cell_rules``' ``plus``, ARCHITECTURE §4).
 ABSORBING = float(1 << 24)
 _INF_BITS = 0x7F800000  # float32 +inf's bits: a non-negative float32's bits order as the float does
+#: From this value on, an absorbing layer's search buckets are one float32 step wide (``_cell_rules``' ``bucket``):
+#: a bucket a whole number of distance would pass int32's largest at 2^31, and a move adds at least a step.
+_STEP_BUCKETS = float(1 << 30)
+_STEP_BUCKETS_SHIFT = 0x4E800000 - (1 << 30)  # 2^30's bits less 2^30: buckets run on unbroken at 2^30
+_LAST_BUCKET = (1 << 31) - 1  # past every bucket (inf's is 1.9e9)
 
 
 def may_absorb(cells: int, max_cost: float, cap: float) -> bool:
@@ -232,6 +237,9 @@ _DEFERRED = _STACKED + 1  # ... or among the cells the raise looks at again once
 #: The fewest buckets of the search's ring: a mend's seeds span many buckets and wait in a list for the ring's
 #: window (half of it ahead) to reach them, so a wider ring scans that list less often; 1024 heads cost nothing.
 MIN_RING = 1024
+#: The buckets of a weighted layer's ring that one mark covers (``_bucket_rules``: its marks, a ring's 64th, fit in
+#: row 1 of the ring's links after the search's log, at least 1024 - 120 entries).
+_BLOCK = 64
 #: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
 #: the cells), which 2**15 a side keeps well inside.
 MAX_SIDE = 1 << 15
@@ -830,6 +838,29 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
         return out
 
     @ti.func
+    def bucket(value):
+        """The search's bucket of non-negative ``value`` (a priority), an int32: its whole part (Dial's buckets, one
+        unit of distance wide); on an ``absorbing`` layer from _STEP_BUCKETS on, one float32 step wide, counted by
+        the value's bits - every value up to inf has one, and a move (``plus``) reaches a later one."""
+        out = 0
+        if ti.static(absorbing):
+            if value < _STEP_BUCKETS:
+                out = ti.i32(value)
+            else:
+                out = ti.bit_cast(value, ti.i32) - _STEP_BUCKETS_SHIFT
+        else:
+            out = ti.i32(value)
+        return out
+
+    @ti.func
+    def beyond(slot, value):
+        """Whether bucket ``slot`` lies past every cell of value ``value`` (inf: none does)."""
+        out = slot > value
+        if ti.static(absorbing):
+            out = slot > bucket(value)
+        return out
+
+    @ti.func
     def move_cost(pen: ti.template(), g, i, j, m: ti.template()):
         """The cost of move ``m`` from (i, j): its length, or weighted, its length x the mean of the two cells'
         costs (inf when the target is blocked)."""
@@ -898,6 +929,7 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
     # to the other (ARCHITECTURE §4), so they join the same cells as the whole stencil (a mend's floods step by them)
     steps = tuple(m for m in moves if not m.crossed)
     return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, plus=plus,
+                           bucket=bucket, beyond=beyond,
                            weighted=weighted, updated=updated,
                            leaning=leaning, successor_move=successor_move, window_cell=window_cell, moves=moves,
                            steps=steps)
@@ -1333,12 +1365,13 @@ def _settle_rules(cell: SimpleNamespace) -> SimpleNamespace:
     return SimpleNamespace(settle_all=settle_all)
 
 
-def _bucket_rules() -> SimpleNamespace:
+def _bucket_rules(weighted: bool) -> SimpleNamespace:
     """The search's buckets (``_search_rules``): doubly linked lists of cells threaded through ``links`` (2, padded
     cells + the ring's buckets, ``_search_buckets``) int32: row 0 each listed cell's next cell in its bucket, and in
     its last entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED``
     for a cell in no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded
-    layer."""
+    layer. A ``weighted`` layer's ring also keeps a mark per _BLOCK buckets in row 1 after the log's steps (0: no
+    cell listed in them since the mark was cleared), so that ``next_listed`` passes empty blocks a load each."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -1368,6 +1401,9 @@ def _bucket_rules() -> SimpleNamespace:
         """Empty every bucket of the ring (its heads start at ``heads``)."""
         for slot in range(links.shape[1] - heads):
             links[0, heads + slot] = _UNLISTED
+        if ti.static(weighted):
+            for block in range((links.shape[1] - heads) // _BLOCK):
+                links[1, heads + _LOG_STEPS + block] = 0
 
     @ti.func
     def link(links: ti.template(), heads, c, slot):
@@ -1377,8 +1413,33 @@ def _bucket_rules() -> SimpleNamespace:
         if first >= 0:
             links[1, first] = c
         links[0, heads + slot] = c
+        if ti.static(weighted):
+            links[1, heads + _LOG_STEPS + slot // _BLOCK] = 1
 
-    return SimpleNamespace(unlink=unlink, link=link, clear=clear, take_first=take_first)
+    @ti.func
+    def next_listed(links: ti.template(), heads, bucket):
+        """The first bucket from ``bucket`` on that lists a cell (one does: the cells listed lie in the ring's
+        buckets ahead), a block of _BLOCK buckets a load where its mark is 0, else a bucket a load; a block found
+        empty from its first bucket on has its mark cleared (cells leave buckets without clearing it). Dial's buckets
+        are one unit of distance wide: on a weighted layer whose costs reach thousands most are empty, each a pass of
+        a search's loop (6-7 ns: a map of 36,000 cells whose distances reach 4e7 took 300 ms to search, 36 ms
+        skipping them a bucket a load - RESULTS §10). A binary layer's moves leave at most two empty in a row, and
+        the check cost its repairs 1-5 % (``benchmarks.ab``): weighted only."""
+        mask = links.shape[1] - heads - 1
+        while links[0, heads + (bucket & mask)] < 0:
+            mark = heads + _LOG_STEPS + (bucket & mask) // _BLOCK
+            end = (bucket | (_BLOCK - 1)) + 1
+            if links[1, mark] == 0:
+                bucket = end
+            else:
+                whole = bucket & (_BLOCK - 1) == 0
+                while bucket < end and links[0, heads + (bucket & mask)] < 0:
+                    bucket += 1
+                if whole and bucket == end:
+                    links[1, mark] = 0
+        return bucket
+
+    return SimpleNamespace(unlink=unlink, link=link, clear=clear, take_first=take_first, next_listed=next_listed)
 
 
 def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
@@ -1391,20 +1452,30 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     (``_race_rules``: a race that loses puts them back). A cell taken reads the penalties of its 3 x 3 block once
     (``around``), and tries the moves through a corner of it (``stencil.through_corner``) only when one of its four
     corners is free: a one-cell corridor's cells try the four straight moves alone."""
-    moves, move_cost, penalty, plus = cell.moves, cell.move_cost, cell.penalty, cell.plus
-    buckets = _bucket_rules()
+    moves, move_cost, penalty, plus, bucket_of = cell.moves, cell.move_cost, cell.penalty, cell.plus, cell.bucket
+    buckets = _bucket_rules(cell.weighted)
     unlink, link, clear, take_first = buckets.unlink, buckets.link, buckets.clear, buckets.take_first
     straight = tuple(m for m in moves if not stencil.through_corner(m))
     cornered = tuple(m for m in moves if stencil.through_corner(m))
 
     @ti.func
     def priority(value, i, j, focus_row, focus_col):
-        """``value`` plus the Euclidean distance of padded cell (i, j) from the focus (none: row -1): a lower bound
-        on a route from the focus through the cell (A*'s f; every move costs its Euclidean length)."""
+        """The bucket (``_cell_rules``' ``bucket``) of ``value`` plus the Euclidean distance of padded cell (i, j)
+        from the focus (none: row -1): a lower bound on a route from the focus through the cell (A*'s f; every move
+        costs its Euclidean length)."""
         away = 0.0
         if focus_row >= 0:
             away = ti.sqrt(ti.f32((i - focus_row) ** 2 + (j - focus_col) ** 2))
-        return value + away
+        return bucket_of(value + away)
+
+    @ti.func
+    def past_focus(values: ti.template(), bucket, focus_row, focus_col):
+        """Whether a focused search's ``bucket`` lies SEARCH_MARGIN past its focus's value (unfocused, row -1:
+        never; the focus's value is read only if there is one - Taichi's ``and`` evaluates both sides)."""
+        out = False
+        if focus_row >= 0:
+            out = cell.beyond(bucket, values[0, focus_row, focus_col] + SEARCH_MARGIN)
+        return out
 
     @ti.func
     def log(links: ti.template(), heads, c):
@@ -1475,7 +1546,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                 listed += 1
             else:
                 unlink(links, heads, there)
-            due = ti.max(bucket, ti.i32(priority(cand, u, v, focus_row, focus_col)))
+            due = ti.max(bucket, priority(cand, u, v, focus_row, focus_col))
             link(links, heads, there, due & (links.shape[1] - heads - 1))
         return listed
 
@@ -1503,7 +1574,8 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                 _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
     return SimpleNamespace(hand_over=hand_over, empty=empty, priority=priority, link=link, unlink=unlink, clear=clear,
-                           log=log)
+                           log=log, past_focus=past_focus, next_listed=buckets.next_listed,
+                           weighted=cell.weighted)
 
 
 def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
@@ -1886,10 +1958,11 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     race that wins hands its log on: ``hand_log``), so that a mend knows how many cells lie nearer the source than its
     edits (``kept``), to a fifth. A mend's race is ``logged`` (its ``links`` have a third
     row: ``_search_rules``), so that ``clean`` finds the cells it lowered."""
-    blocked, weighted = cell.blocked, cell.weighted
+    blocked, weighted, bucket_of = cell.blocked, cell.weighted, cell.bucket
     searching = _search_rules(cell, logged)
     empty, priority, link, unlink, clear, log = (searching.empty, searching.priority, searching.link, searching.unlink,
                                                  searching.clear, searching.log)
+    next_listed, past_focus = searching.next_listed, searching.past_focus
 
     @ti.func
     def start(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), focus_row,
@@ -1913,7 +1986,7 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
             if ti.static(logged):
                 log(links, heads, i * width + j)
             values[0, i, j] = 0.0
-            race[_BUCKET] = ti.i32(priority(0.0, i, j, focus_row, focus_col))
+            race[_BUCKET] = priority(0.0, i, j, focus_row, focus_col)
             link(links, heads, i * width + j, race[_BUCKET] & (links.shape[1] - heads - 1))
             race[_LISTED] = 1
         return race
@@ -1922,8 +1995,7 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     def over(values: ti.template(), race):
         """Whether ``race`` has finished: nothing listed, or, focused, the bucket it reached SEARCH_MARGIN past the
         focus's value."""
-        focus_row, focus_col = race[_FOCUS_ROW], race[_FOCUS_COL]
-        past = focus_row >= 0 and race[_BUCKET] > values[0, focus_row, focus_col] + SEARCH_MARGIN
+        past = past_focus(values, race[_BUCKET], race[_FOCUS_ROW], race[_FOCUS_COL])
         return (race[_LISTED] == 0 and race[_FROM] < 0) or past
 
     @ti.func
@@ -1938,23 +2010,10 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
             race[_EMPTIED] += 1
             race = log_steps(values, links, race)
             if ti.static(weighted) and race[_LISTED] > 0:  # on past empty buckets (counted as emptied)
-                skipped = next_listed(values, links, race[_BUCKET]) - race[_BUCKET]
+                skipped = next_listed(links, values.shape[1] * values.shape[2], race[_BUCKET]) - race[_BUCKET]
                 race[_BUCKET] += skipped
                 race[_EMPTIED] += skipped
         return race
-
-    @ti.func
-    def next_listed(values: ti.template(), links: ti.template(), bucket):
-        """The first bucket from ``bucket`` on that lists a cell (one does: the cells listed lie in the ring's
-        buckets ahead), a load a bucket. Dial's buckets are one unit of distance wide: on a weighted layer whose
-        costs reach thousands most are empty, each a pass of ``run``'s loop (6-7 ns: a map of 36,000 cells whose
-        distances reach 4e7 took 300 ms to search, 36 ms skipping them - RESULTS §10). A binary layer's moves leave
-        at most two empty in a row, and the check cost its repairs 1-5 % (``benchmarks.ab``): weighted only."""
-        heads = values.shape[1] * values.shape[2]
-        mask = links.shape[1] - heads - 1
-        while links[0, heads + (bucket & mask)] < 0:
-            bucket += 1
-        return bucket
 
     @ti.func
     def log_steps(values: ti.template(), links: ti.template(), race):
@@ -1994,9 +2053,9 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
                 early = ti.select(value < band, 1, 0)
                 taken += early
                 if kept - early == 1:
-                    link(links, heads, i * width + j, ti.i32(value) & mask)
+                    link(links, heads, i * width + j, bucket_of(value) & mask)
                     listed += 1
-                    first = ti.min(first, ti.i32(value))
+                    first = ti.min(first, bucket_of(value))
         race[_BUCKET], race[_LISTED], race[_TAKEN], race[_KEPT], race[_FROM] = first, listed, taken, taken, _SEEDED
         race[_HEAD] += taken - race[_LEAD] * race[_PASS]
         return race
@@ -2191,6 +2250,7 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
     """The second half of a mend: ``lower_cut``, Dial's search from the seeds, with the search's rules
     (``searching``: :func:`_search_rules`' buckets and A*'s order with a focus)."""
     empty, priority, link, clear = searching.empty, searching.priority, searching.link, searching.clear
+    next_listed, past_focus, weighted = searching.next_listed, searching.past_focus, searching.weighted
 
     @ti.func
     def lower_cut(values: ti.template(), pen: ti.template(), links: ti.template(), trail: ti.template(), seeds,
@@ -2206,20 +2266,19 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
         clear(links, heads)
         bucket, listed, emptied, scan_at, taken = 0, 0, 0, 0, 0
         half = (mask + 1) // 2
-        while (listed > 0 or seeds > 0) and not (
-                focus_row >= 0 and bucket > values[0, focus_row, focus_col] + SEARCH_MARGIN):
+        while (listed > 0 or seeds > 0) and not past_focus(values, bucket, focus_row, focus_col):
             if listed == 0:  # the ring ran dry: on to the nearest seed waiting
-                bucket = _NEVER
+                bucket = _LAST_BUCKET
                 for k in range(seeds):
                     i, j = _cell_at(trail[0, k], width)
-                    bucket = ti.min(bucket, ti.i32(priority(values[0, i, j], i, j, focus_row, focus_col)))
+                    bucket = ti.min(bucket, priority(values[0, i, j], i, j, focus_row, focus_col))
                 scan_at = bucket
             if bucket >= scan_at:
                 waiting = 0
                 for k in range(seeds):
                     c = trail[0, k]
                     i, j = _cell_at(c, width)
-                    due = ti.i32(priority(values[0, i, j], i, j, focus_row, focus_col))
+                    due = priority(values[0, i, j], i, j, focus_row, focus_col)
                     if links[1, c] == _UNLISTED and due <= bucket + half:
                         link(links, heads, c, ti.max(bucket, due) & mask)
                         listed += 1
@@ -2232,6 +2291,12 @@ def _lower_rules(searching: SimpleNamespace) -> SimpleNamespace:
             taken += change[1]
             bucket += 1
             emptied += 1
+            if ti.static(weighted) and listed > 0:  # on past empty buckets, but not past the trail's next scan
+                ahead = next_listed(links, heads, bucket)
+                if seeds > 0:
+                    ahead = ti.min(ahead, ti.max(scan_at, bucket))
+                emptied += ahead - bucket
+                bucket = ahead
         return ti.Vector([emptied, listed + seeds, seeds, taken])
 
     return SimpleNamespace(lower_cut=lower_cut)

@@ -173,6 +173,36 @@ def test_a_map_whose_costs_rise_past_float32s_whole_numbers_takes_the_kernels_fo
     assert np.isinf(field.distances()[:, 50:]).all()
 
 
+def test_distances_past_int32s_largest_keep_dials_order_through_cuts_and_reopenings():
+    """A corridor of 2,300 cells costing 1e6: distances reach 2.3e9, past int32's largest (2**31), where a search's
+    bucket (a whole number of distance) had no int32 - a cell went into the bucket being emptied, and a repair that
+    closed the corridor or opened it again ran on without end. From 2**30 on such a layer's buckets are one float32
+    step wide: the converge matches scipy's Dijkstra, the cut-off part rises to inf, reopening restores the field bit
+    for bit, and a focused converge agrees at its focus."""
+    occupied, cost = np.zeros((1, 2300), bool), np.full((1, 2300), 1e6)
+    cost[0, :3] = 1.0
+    grid, goal, far = tdp.GridMap(occupied, cost=cost), (0, 0), (0, 2299)
+    field = tdp.DistanceField(grid, goal, neighbourhood=4)
+    field.converge()
+    distances = field.distances().copy()
+    assert distances[far] > 2**31
+    # float32 rounds each sum to a multiple of 128-256 here: 2,300 of them drift 3.4e-5 from float64's
+    assert_distances_match(distances, reference(grid, goal, 4, False), rtol=1e-4)
+    path = field.path(far)
+    assert path[-1] == goal and all(distances[a] > distances[b] for a, b in zip(path, path[1:]))
+    for cut in [(0, 2000), (0, 900)]:  # beyond 2**31 and below 2**30
+        field.set_occupied([cut])
+        field.converge()
+        assert np.isinf(field.distances()[0, cut[1]:]).all()
+        np.testing.assert_array_equal(field.distances()[0, :cut[1]], distances[0, :cut[1]])
+        field.set_occupied([cut], False)
+        field.converge()
+        np.testing.assert_array_equal(field.distances(), distances)
+    focused = tdp.DistanceField(grid, goal, neighbourhood=4)
+    focused.converge(focus=far)
+    assert focused.distances()[far] == distances[far]
+
+
 def test_cost_edits_need_a_map_with_costs_and_costs_from_1_to_max_cost():
     field = tdp.DistanceField(tdp.GridMap(np.zeros((5, 5), bool)), (0, 0))
     with pytest.raises(ValueError, match="binary"):
