@@ -15,8 +15,13 @@ medians of repeats:
   a 1-cell maze;
 - repair: a 3 x 3 box on the route from the farthest cell, set and converged (a mend: one serial launch), then
   taken away again;
+- costs: the goal layer of a weighted map from scratch (the search) and its repair after a 3 x 3 box on the route:
+  a random 1024² map with nav2-like inflation costs, and a corridor of cells costing 1e6 whose distances pass 2^24
+  (the absorbing kernels, whose moves add at least one float32 step by the value's bits);
 - ticks: the exact planner and the accelerating and plain-DP planners at K = 1 on two random worlds of 200², their
-  setup and their median and 95th-percentile tick (its map update included).
+  setup and their median and 95th-percentile tick (its map update included); and the same planners, the DP ones at
+  K = 8, on a rooms world of 1024² for its first LARGE_TICKS ticks - the size where a dense iteration pays for a
+  launch.
 
 Every goal layer a worker converges is compared bit for bit with the first backend's (saved as .npy in a scratch
 folder): the result does not depend on the backend. A converge or repair whose projected time on a backend - its timed
@@ -51,6 +56,15 @@ WORLDS = [("rooms", 200, 0), ("crossing", 200, 0)]
 QUICK_WORLDS = [("rooms", 60, 0)]
 PLANNERS = [("exact", {"planner": "exact"}), ("accelerating K=1", {"planner": "accelerating", "updates_per_move": 1}),
             ("plain DP K=1", {"planner": "plain-dp", "updates_per_move": 1})]
+LARGE_WORLDS = [("rooms", 1024, 0)]
+QUICK_LARGE_WORLDS = [("rooms", 128, 0)]
+LARGE_PLANNERS = [("exact", {"planner": "exact"}),
+                  ("accelerating K=8", {"planner": "accelerating", "updates_per_move": 8}),
+                  ("plain DP K=8", {"planner": "plain-dp", "updates_per_move": 8})]
+#: Ticks timed on a large world (its whole episode would take minutes a planner on a slow backend).
+LARGE_TICKS = 100
+COST_SIZE, QUICK_COST_SIZE = 1024, 128
+DEAR_ROWS, QUICK_DEAR_ROWS = 120, 60
 NODE_SETUP_NODES = 64
 #: A converge or repair case is skipped on a backend where its timed calls, at the smaller map's time scaled by the
 #: cells, project past this many seconds.
@@ -157,7 +171,39 @@ def _node_setup_row(size: int, repeats: int, scratch: Path, first: bool) -> None
            "same": _same_as_first(f"nodes-{size}", engine.node_distances(len(lattice.cells) // 2), scratch, first)})
 
 
-def _tick_rows(worlds, scratch: Path, first: bool) -> None:
+def _cost_cases(quick: bool) -> list[tuple[str, object, tuple[int, int]]]:
+    """A random map with inflation costs, and the dear corridor (cost 1e6: distances past 2^24)."""
+    import tdp
+    from benchmarks.convergence import random_cases
+    from benchmarks.costs import costs, dear_corridor
+
+    name, occupied, goal = random_cases(QUICK_COST_SIZE if quick else COST_SIZE)[0]
+    dear, dear_goal = dear_corridor(QUICK_DEAR_ROWS if quick else DEAR_ROWS, 1e6)
+    return [(f"{name}, inflation costs", tdp.GridMap(occupied, cost=costs(occupied, "inflation")), goal),
+            (f"dear corridor {dear.shape[0]}x{dear.shape[1]}, cost 1e6", dear, dear_goal)]
+
+
+def _cost_rows(quick: bool, repeats: int, scratch: Path, first: bool) -> None:
+    """Each cost case's converge from scratch and box repair, both compared with the first backend's."""
+    import tdp
+    from benchmarks.convergence import from_scratch
+    from benchmarks.costs import box_repair_s, route_box
+
+    for name, grid, goal in _cost_cases(quick):
+        field = tdp.DistanceField(grid, goal)
+        seconds = median_time(lambda: from_scratch(field), repeats)
+        _emit({"case": "converge", "map": name, "kind": "search", "ms": 1e3 * seconds,
+               "same": _same_as_first(f"{name}-search", field.distances(), scratch, first)})
+        box = route_box(field)
+        repair_ms = 1e3 * float(np.median([box_repair_s(field, box) for _ in range(repeats + 1)][1:]))
+        field.set_occupied(box)
+        field.converge()
+        _emit({"case": "repair", "map": name, "kind": "box", "ms": repair_ms,
+               "same": _same_as_first(f"{name}-box", field.distances(), scratch, first)})
+
+
+def _tick_rows(worlds, planners, max_ticks: int | None, scratch: Path, first: bool) -> None:
+    """Each planner's setup and ticks on each world: its whole episode, or its first ``max_ticks`` ticks."""
     import tdp
     from benchmarks.equal_time import planner_for
     from tdp.random_worlds import make_world
@@ -165,12 +211,13 @@ def _tick_rows(worlds, scratch: Path, first: bool) -> None:
 
     for family, size, seed in worlds:
         scenario = make_world(family, size, seed)
-        for label, options in PLANNERS:
+        ticks_limit = min(scenario.tick_limit, max_ticks or scenario.tick_limit)
+        for label, options in planners:
             planner_for(scenario, options)  # this kind's kernels compiled before any timing
             began = time.perf_counter()
             planner = planner_for(scenario, options)
             setup_s = time.perf_counter() - began
-            record = run_planner(scenario, planner, tdp.NavigatorConfig(**options), scenario.tick_limit)
+            record = run_planner(scenario, planner, tdp.NavigatorConfig(**options), ticks_limit)
             ticks = [1e3 * sum(r.timings.values()) for r in record["results"]]
             _emit({"case": "ticks", "map": f"{family} {size}² #{seed}", "kind": label, "setup_ms": 1e3 * setup_s,
                    "ms": float(np.median(ticks)), "p95_ms": float(np.percentile(ticks, 95)),
@@ -191,7 +238,9 @@ def worker(quick: bool, repeats: int, scratch: Path, first: bool) -> None:
                "ms": times["taichi_ms"], "steady_ms": times["steady_ms"],
                "cell_layers_per_s": times["updates_per_s"]})
     _converge_rows(QUICK_CONVERGE_SIZES if quick else CONVERGE_SIZES, repeats, scratch, first)
-    _tick_rows(QUICK_WORLDS if quick else WORLDS, scratch, first)
+    _cost_rows(quick, repeats, scratch, first)
+    _tick_rows(QUICK_WORLDS if quick else WORLDS, PLANNERS, None, scratch, first)
+    _tick_rows(QUICK_LARGE_WORLDS if quick else LARGE_WORLDS, LARGE_PLANNERS, LARGE_TICKS, scratch, first)
 
 
 # ------------------------------------------------------------------------------------------------ the parent side

@@ -117,13 +117,20 @@ def box_repair_s(field: tdp.DistanceField, box: list[tuple[int, int]]) -> float:
     return took_s
 
 
+def route_box(field: tdp.DistanceField) -> list[tuple[int, int]]:
+    """The free cells (the goal's left out) of a 3 x 3 box on the converged field's optimal route from its farthest
+    reachable cell, at the route's middle."""
+    (r, c), _ = route_middle(field, field.distances())
+    rows, cols = field.occupied.shape
+    return [(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)
+            if (r + i, c + j) != field.goal and 0 <= r + i < rows and 0 <= c + j < cols
+            and not field.occupied[r + i, c + j]]
+
+
 def repair_pairs(binary: tdp.DistanceField, weighted: tdp.DistanceField, repeats: int) -> tuple[float, float]:
     """The median ratio weighted / binary of the same edit's repair - a 3 x 3 box on the weighted field's optimal
-    route from its farthest reachable cell - timed in turn, and the weighted repair's median in ms."""
-    (r, c), _ = route_middle(weighted, weighted.distances())
-    box = [(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)
-           if (r + i, c + j) != weighted.goal and 0 <= r + i < weighted.occupied.shape[0]
-           and 0 <= c + j < weighted.occupied.shape[1] and not weighted.occupied[r + i, c + j]]
+    route from its farthest reachable cell (``route_box``) - timed in turn, and the weighted repair's median in ms."""
+    box = route_box(weighted)
     ratios, times = [], []
     for _ in range(repeats + 1):
         pair = [box_repair_s(field, box) for field in (weighted, binary)]
