@@ -1,7 +1,9 @@
 """Graded costs: converge and repair on a cost grid against the same map binary, and against scipy's Dijkstra on the
 weighted graph.
 
-    python -m benchmarks.costs [--quick]
+    python -m benchmarks.costs [--quick] [--dear]
+
+--dear: the dear-corridor table alone (results/costs-dear.json).
 
 For each map, a goal in its largest free region and two kinds of cost: ``inflation`` (nav2's inflation layer's
 shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gradient near walls) and ``random``
@@ -29,7 +31,7 @@ from scipy import ndimage
 from scipy.sparse.csgraph import dijkstra
 
 import tdp
-from benchmarks.common import paired_times, print_table, quick_parser, save_results
+from benchmarks.common import machine, paired_times, print_table, quick_parser, save_results, write_json
 from tdp.engine import ABSORBING
 from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, ROOT, largest_free_region, ros_cases, route_middle
 from benchmarks.reference_graph import grid_graph
@@ -346,9 +348,25 @@ def figure(rows: list[dict], path) -> None:
     save_figure(fig, path)
 
 
+def print_dear(dear: list[dict]) -> None:
+    print_table(["corridor cost", "cells", "largest distance", "converge ms", "Dijkstra ms", "ratio",
+                 "box repair ms", "equal to scipy"],
+                [[f"{r['dear']:g}", str(r["cells"]), f"{r['largest']:.4g}", f"{r['scratch_ms']:.2f}",
+                  f"{r['dijkstra_ms']:.2f}", f"{r['ratio']:.2f}", f"{r['repair_ms']:.2f}", str(r["equal"])]
+                 for r in dear])
+
+
 def main() -> None:
-    args = quick_parser(__doc__).parse_args()
+    parser = quick_parser(__doc__)
+    parser.add_argument("--dear", action="store_true", help="the dear-corridor table alone")
+    args = parser.parse_args()
     repeats = QUICK_REPEATS if args.quick else REPEATS
+    if args.dear:
+        dear = dear_rows(args.quick, repeats)
+        print_dear(dear)
+        name = "costs-dear-quick" if args.quick else "costs-dear"
+        print(f"wrote {write_json(name, {'machine': machine(), 'dear': dear})}")
+        return
     rows = []
     for name, occupied, goal in maps(args.quick):
         for kind in ("inflation", "random"):
@@ -359,11 +377,7 @@ def main() -> None:
                   f"{r['scratch_ratio']:.2f}", f"{r['repair_ms']:.2f}", f"{r['repair_ratio']:.2f}", str(r["equal"])]
                  for r in rows])
     dear = dear_rows(args.quick, repeats)
-    print_table(["corridor cost", "cells", "largest distance", "converge ms", "Dijkstra ms", "ratio",
-                 "box repair ms", "equal to scipy"],
-                [[f"{r['dear']:g}", str(r["cells"]), f"{r['largest']:.4g}", f"{r['scratch_ms']:.2f}",
-                  f"{r['dijkstra_ms']:.2f}", f"{r['ratio']:.2f}", f"{r['repair_ms']:.2f}", str(r["equal"])]
-                 for r in dear])
+    print_dear(dear)
     paths = clearance(args.quick)
     print_table(["map", "pair", "clearance, costed / binary", "length, costed / binary"],
                 [[r["map"], str(r["pair"]), f"{r['clearance_ratio']:.2f}", f"{r['length_ratio']:.2f}"] for r in paths])
