@@ -1371,7 +1371,8 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
     its last entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED``
     for a cell in no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded
     layer. A ``weighted`` layer's ring also keeps a mark per _BLOCK buckets in row 1 after the log's steps (0: no
-    cell listed in them since the mark was cleared), so that ``next_listed`` passes empty blocks a load each."""
+    cell listed in them since the mark was cleared; -1 when made), so that ``next_listed`` passes empty blocks a load
+    each and ``clear`` empties only the marked ones."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -1398,12 +1399,17 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
 
     @ti.func
     def clear(links: ti.template(), heads):
-        """Empty every bucket of the ring (its heads start at ``heads``)."""
-        for slot in range(links.shape[1] - heads):
-            links[0, heads + slot] = _UNLISTED
+        """Empty every bucket of the ring (its heads start at ``heads``); on a weighted layer only the blocks
+        marked (a ring of 4 million buckets at costs of 1e6, cleared by every search and mend)."""
         if ti.static(weighted):
             for block in range((links.shape[1] - heads) // _BLOCK):
-                links[1, heads + _LOG_STEPS + block] = 0
+                if links[1, heads + _LOG_STEPS + block] != 0:
+                    for slot in range(block * _BLOCK, (block + 1) * _BLOCK):
+                        links[0, heads + slot] = _UNLISTED
+                    links[1, heads + _LOG_STEPS + block] = 0
+        else:
+            for slot in range(links.shape[1] - heads):
+                links[0, heads + slot] = _UNLISTED
 
     @ti.func
     def link(links: ti.template(), heads, c, slot):
