@@ -1425,14 +1425,16 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
     @ti.func
     def next_listed(links: ti.template(), heads, bucket):
         """The first bucket from ``bucket`` on that lists a cell (one does: the cells listed lie in the ring's
-        buckets ahead), a block of _BLOCK buckets a load where its mark is 0, else a bucket a load; a block found
-        empty from its first bucket on has its mark cleared (cells leave buckets without clearing it). Dial's buckets
-        are one unit of distance wide: on a weighted layer whose costs reach thousands most are empty, each a pass of
-        a search's loop (6-7 ns: a map of 36,000 cells whose distances reach 4e7 took 300 ms to search, 36 ms
-        skipping them a bucket a load - RESULTS §10). A binary layer's moves leave at most two empty in a row, and
-        the check cost its repairs 1-5 % (``benchmarks.ab``): weighted only."""
+        buckets ahead): a block of _BLOCK buckets a load of its mark where that is 0 (the marks lie together; a
+        block's heads, a cache line apart, are not read), else a bucket a load; a block found empty from its first
+        bucket on has its mark cleared (cells leave buckets without clearing it). Dial's buckets are one unit of
+        distance wide: on a weighted layer whose costs reach thousands most are empty, each a pass of a search's loop
+        (6-7 ns: a map of 36,000 cells whose distances reach 4e7 took 300 ms to search, 36 ms skipping them a bucket
+        a load - RESULTS §10). A binary layer's moves leave at most two empty in a row, and the check cost its
+        repairs 1-5 % (``benchmarks.ab``): weighted only."""
         mask = links.shape[1] - heads - 1
-        while links[0, heads + (bucket & mask)] < 0:
+        found = False
+        while not found:
             mark = heads + _LOG_STEPS + (bucket & mask) // _BLOCK
             end = (bucket | (_BLOCK - 1)) + 1
             if links[1, mark] == 0:
@@ -1441,7 +1443,8 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
                 whole = bucket & (_BLOCK - 1) == 0
                 while bucket < end and links[0, heads + (bucket & mask)] < 0:
                     bucket += 1
-                if whole and bucket == end:
+                found = bucket < end
+                if whole and not found:
                     links[1, mark] = 0
         return bucket
 
