@@ -187,7 +187,7 @@ def _cost_rows(quick: bool, repeats: int, scratch: Path, first: bool) -> None:
     """Each cost case's converge from scratch and box repair, both compared with the first backend's."""
     import tdp
     from benchmarks.convergence import from_scratch
-    from benchmarks.costs import box_repair_s, route_box
+    from benchmarks.costs import median_box_repair_ms, route_box
 
     for name, grid, goal in _cost_cases(quick):
         field = tdp.DistanceField(grid, goal)
@@ -195,7 +195,7 @@ def _cost_rows(quick: bool, repeats: int, scratch: Path, first: bool) -> None:
         _emit({"case": "converge", "map": name, "kind": "search", "ms": 1e3 * seconds,
                "same": _same_as_first(f"{name}-search", field.distances(), scratch, first)})
         box = route_box(field)
-        repair_ms = 1e3 * float(np.median([box_repair_s(field, box) for _ in range(repeats + 1)][1:]))
+        repair_ms = median_box_repair_ms(field, box, repeats)
         field.set_occupied(box)
         field.converge()
         _emit({"case": "repair", "map": name, "kind": "box", "ms": repair_ms,
