@@ -173,7 +173,7 @@ _INF_BITS = 0x7F800000  # float32 +inf's bits: a non-negative float32's bits ord
 #: From this value on, an absorbing layer's search buckets are one float32 step wide (``_cell_rules``' ``bucket``):
 #: a bucket a whole number of distance would pass int32's largest at 2^31, and a move adds at least a step.
 _STEP_BUCKETS = float(1 << 30)
-_STEP_BUCKETS_SHIFT = 0x4E800000 - (1 << 30)  # 2^30's bits less 2^30: buckets run on unbroken at 2^30
+_STEP_BUCKETS_SHIFT = int(np.float32(_STEP_BUCKETS).view(np.int32)) - (1 << 30)  # buckets run on unbroken at 2^30
 _LAST_BUCKET = (1 << 31) - 1  # past every bucket (inf's is 1.9e9)
 
 
@@ -1398,15 +1398,20 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         return c
 
     @ti.func
+    def mark_of(heads, block):
+        """Where block ``block``'s mark lies in row 1 of ``links`` (a weighted layer's: after the search's log)."""
+        return heads + _LOG_STEPS + block
+
+    @ti.func
     def clear(links: ti.template(), heads):
         """Empty every bucket of the ring (its heads start at ``heads``); on a weighted layer only the blocks
         marked (a ring of 4 million buckets at costs of 1e6, cleared by every search and mend)."""
         if ti.static(weighted):
             for block in range((links.shape[1] - heads) // _BLOCK):
-                if links[1, heads + _LOG_STEPS + block] != 0:
+                if links[1, mark_of(heads, block)] != 0:
                     for slot in range(block * _BLOCK, (block + 1) * _BLOCK):
                         links[0, heads + slot] = _UNLISTED
-                    links[1, heads + _LOG_STEPS + block] = 0
+                    links[1, mark_of(heads, block)] = 0
         else:
             for slot in range(links.shape[1] - heads):
                 links[0, heads + slot] = _UNLISTED
@@ -1420,7 +1425,7 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
             links[1, first] = c
         links[0, heads + slot] = c
         if ti.static(weighted):
-            links[1, heads + _LOG_STEPS + slot // _BLOCK] = 1
+            links[1, mark_of(heads, slot // _BLOCK)] = 1
 
     @ti.func
     def next_listed(links: ti.template(), heads, bucket):
@@ -1435,7 +1440,7 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         mask = links.shape[1] - heads - 1
         found = False
         while not found:
-            mark = heads + _LOG_STEPS + (bucket & mask) // _BLOCK
+            mark = mark_of(heads, (bucket & mask) // _BLOCK)
             end = (bucket | (_BLOCK - 1)) + 1
             if links[1, mark] == 0:
                 bucket = end
