@@ -4,14 +4,15 @@
 
 Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each with
 goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
-(``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one
-corridor a cell wide winding row by row: ``serpentine``), goals at a corner, the centre and a random free cell;
-halls of 4096 x 64 and 64 x 4096 cells (random, 20 % obstacles: a long corridor or aisle), goals at the middle of an
-end, the centre and a random free cell; the MovingAI maps in ../shared/data with several scenario goals each
-(skipped when absent); the ROS maps (turtlebot3's world, nav2's 1674 x 1006 warehouse and its depot, inflated by
-0.2 m) with random goals. All on the default stencil
-(16 neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner
-goal, turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
+(``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one corridor a
+cell wide winding row by row: ``serpentine``) and rings of side 256 and 512 (concentric corridors a cell wide, a door in
+each wall between two: ``rings``), goals at a corner, the centre and a random free cell; caves of side 512 and 1024 (a
+cellular automaton's winding passages: ``caves``), goals in their largest region; halls of 4096 x 64 and 64 x 4096 cells
+(random, 20 % obstacles: a long corridor or aisle), goals at the middle of an end, the centre and a random free cell;
+the MovingAI maps in ../shared/data with several scenario goals each (skipped when absent); the ROS maps (turtlebot3's
+world, nav2's 1674 x 1006 warehouse and its depot, inflated by 0.2 m) with random goals. All on the default stencil (16
+neighbours, no corner cutting); three of them (random 512² with the centre goal, the 1-cell maze with the corner goal,
+turtlebot3's world) again with 8 neighbours, 8 with corners cut and 4 (STENCILS). The graph is built once and
 timed apart; Dijkstra's solve and a from-scratch converge() (``reset()`` then ``converge()``) are timed in turn,
 warm, in the same process (their ratio is the median of each pair's; 5 times the repeats where the solve takes under
 5 ms), and the field is checked equal to Dijkstra's. Timed only, as warm medians, where installed (``pip install
@@ -70,6 +71,15 @@ MAZES, QUICK_MAZES = [(256, 1), (512, 1), (512, 2), (512, 4)], [(64, 1)]
 #: Serpentines (side): one corridor a cell wide winding row by row, a search's frontier one cell all the way - where
 #: Dijkstra's heap is at its cheapest and each cell has two edges against our stencil's 16 moves.
 SERPENTINES, QUICK_SERPENTINES = [256, 512], [64]
+#: Rings (side): concentric square corridors a cell wide, each wall between two with one door (``rings``) - a
+#: labyrinth of loops where a serpentine and a perfect maze are trees: a blocked cell cuts nothing alone, a freed wall
+#: cell is a shortcut past a ring's length.
+RINGS, QUICK_RINGS = [256, 512], [64]
+#: Caves (side): a cellular automaton's winding passages round blobs of rock (``caves``), as game and outdoor maps.
+CAVES, QUICK_CAVES = [512, 1024], [64]
+#: The caves' rock before the automaton smooths it, and its steps: 0.48 leaves 55-59 % of the map free and nearly
+#: all of it one region of passages 1 to 10 cells wide (0.45: open ground round blobs; 0.5: pockets).
+CAVE_FILL, CAVE_STEPS = 0.48, 5
 #: Halls (rows, cols): random maps (20 % obstacles) far longer than wide - a corridor or an aisle -, tall and wide
 #: (a row-major layout walks them differently). A ring round the goal is clipped to the hall's sides, so sealing a
 #: room there cuts the hall across and leaves most of it behind the cut.
@@ -177,6 +187,49 @@ def serpentine_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]
     """A serpentine (``serpentine``) and its goals (``walled_goals``: the corridor's first cell first)."""
     occupied = serpentine(size)
     return [(f"serpentine {size}² {place}", occupied, goal) for place, goal in walled_goals(occupied).items()]
+
+
+def rings(size: int) -> np.ndarray:
+    """Concentric square corridors a cell wide round the centre of a (size, size) map, True = wall: walls on the
+    border and every second ring inside it, each inner wall with one door, next to a corner of its top, bottom, left
+    and right side in turn, so that a route from the border winds round ring after ring."""
+    occupied = np.zeros((size, size), bool)
+    for ring, top in enumerate(range(0, size // 2, 2)):
+        bottom = size - 1 - top
+        if bottom - top < 2:
+            break
+        occupied[[top, bottom], top:bottom + 1] = True
+        occupied[top:bottom + 1, [top, bottom]] = True
+        if ring:
+            doors = ((top, bottom - 1), (bottom, top + 1), (top + 1, top), (bottom - 1, bottom))
+            occupied[doors[(ring - 1) % 4]] = False
+    return occupied
+
+
+def rings_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """Rings (``rings``) and their goals (``walled_goals``: the outer corridor's corner first)."""
+    occupied = rings(size)
+    return [(f"rings {size}² {place}", occupied, goal) for place, goal in walled_goals(occupied).items()]
+
+
+def caves(size: int) -> np.ndarray:
+    """A cave map of side ``size``, True = rock: CAVE_FILL of the cells rock at random (seeded by the side), then
+    CAVE_STEPS times each cell rock where 5 or more of its 3 x 3 block are (outside the map counts as rock)."""
+    occupied = np.random.default_rng(size).random((size, size)) < CAVE_FILL
+    for _ in range(CAVE_STEPS):
+        occupied = ndimage.convolve(occupied.astype(np.int8), np.ones((3, 3), np.int8), mode="constant", cval=1) >= 5
+    return occupied
+
+
+def caves_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """Caves (``caves``) and their goals in the largest region of passages: its cells nearest the top-left corner
+    and the centre, and a random one."""
+    occupied = caves(size)
+    free = largest_free_region(occupied)
+    picks = {"corner": np.argmin(free.sum(axis=1)), "centre": np.argmin(np.abs(free - size // 2).sum(axis=1)),
+             "random": np.random.default_rng(size + 1).integers(len(free))}
+    goals = {place: tuple(int(v) for v in free[k]) for place, k in picks.items()}
+    return goal_cases(f"caves {size}² ", occupied, goals)
 
 
 def movingai_cases(name: str) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
@@ -502,16 +555,19 @@ def main() -> None:
                         help="only the cases whose name holds one of these (no doors; saved as convergence-only)")
     args = parser.parse_args()
     if args.quick:
-        sizes, dense, mazes, serpentines, halls, maps, stencil_maps = (
-            QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_SERPENTINES, QUICK_HALLS, QUICK_MAPS, QUICK_STENCIL_MAPS)
+        sizes, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
+            QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_SERPENTINES, QUICK_RINGS, QUICK_CAVES, QUICK_HALLS, QUICK_MAPS,
+            QUICK_STENCIL_MAPS)
     else:
-        sizes, dense, mazes, serpentines, halls, maps, stencil_maps = (
-            SIZES, DENSE, MAZES, SERPENTINES, HALLS, MAPS, STENCIL_MAPS)
+        sizes, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
+            SIZES, DENSE, MAZES, SERPENTINES, RINGS, CAVES, HALLS, MAPS, STENCIL_MAPS)
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
     cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
     cases += [case for size in serpentines for case in serpentine_cases(size)]
+    cases += [case for size in ring_sides for case in rings_cases(size)]
+    cases += [case for size in cave_sides for case in caves_cases(size)]
     cases += [case for rows, cols in halls for case in hall_cases(rows, cols)]
     cases += [case for name in maps for case in movingai_cases(name)]
     if not args.quick:
