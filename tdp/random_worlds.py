@@ -45,12 +45,9 @@ def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
     """
     if family not in FAMILIES:
         raise ValueError(f"unknown world family {family!r}; choose one of {', '.join(FAMILIES)}")
-    if isinstance(size, bool) or not isinstance(size, int) or size < 60:
-        raise ValueError(f"size must be an integer of at least 60 cells, got {size!r}")
+    size, seed = checks.integer(size, "size", 60), checks.integer(seed, "seed", 0)
     if size > MAX_MAP_SIDE:  # numpy's own error inside a draw read as "no valid world", after 100 draws
         raise ValueError(f"size must be at most {MAX_MAP_SIDE} cells (the engine's largest map), got {size}")
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
     rng = np.random.default_rng([FAMILIES.index(family), size, seed])
     for _ in range(100):
         try:

@@ -385,6 +385,11 @@ def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
         maze(9, 1, math.nan)
     with pytest.raises(ValueError, match=r"size must be at most 32764 cells \(the engine's largest map\), got 10+$"):
         tdp.random_worlds.make_world("rooms", 10**30)  # numpy's error in every draw: "no valid world" after 100
+    for size, seed, fault in ((59, 0, "size must be an integer >= 60, got 59"), (60.0, 0, "size must be an integer"),
+                              (60, -1, "seed must be an integer >= 0, got -1"), (60, True, "seed must be an integer")):
+        with pytest.raises(ValueError, match=fault):
+            tdp.random_worlds.make_world("rooms", size, seed)
+    assert tdp.random_worlds.make_world("rooms", np.int64(60), np.uint8(1)).name == "rooms-60-1"
     walled = np.zeros((12, 12), bool)
     walled[6, 6] = True
     with warnings.catch_warnings():
