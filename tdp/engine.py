@@ -240,6 +240,8 @@ MIN_RING = 1024
 #: The buckets of a weighted layer's ring that one mark covers (``_bucket_rules``: its marks, a ring's 64th, fit in
 #: row 1 of the ring's links after the search's log, at least 1024 - 120 entries).
 _BLOCK = 64
+#: ... and that one group mark covers, _BLOCK blocks (a ring of 4096 buckets or more: a 4096th more of it in row 1).
+_GROUP = _BLOCK * _BLOCK
 #: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
 #: the cells), which 2**15 a side keeps well inside.
 MAX_SIDE = 1 << 15
@@ -1371,8 +1373,9 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
     its last entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED``
     for a cell in no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded
     layer. A ``weighted`` layer's ring also keeps a mark per _BLOCK buckets in row 1 after the log's steps (0: no
-    cell listed in them since the mark was cleared; -1 when made), so that ``next_listed`` passes empty blocks a load
-    each and ``clear`` empties only the marked ones."""
+    cell listed in them since the mark was cleared; -1 when made), and after those a mark per _GROUP buckets (a
+    group of _BLOCK blocks, on a ring of _GROUP buckets or more), so that ``next_listed`` passes an empty group or
+    block a load each and ``clear`` empties only the marked ones."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -1403,15 +1406,58 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         return heads + _LOG_STEPS + block
 
     @ti.func
+    def group_mark_of(links: ti.template(), heads, group):
+        """Where group ``group``'s mark lies in row 1 of ``links``: after the blocks' marks."""
+        return mark_of(heads, (links.shape[1] - heads) // _BLOCK + group)
+
+    @ti.func
+    def blocks_of(links: ti.template(), heads):
+        """The blocks of the ring (its heads start at ``heads``)."""
+        return (links.shape[1] - heads) // _BLOCK
+
+    @ti.func
+    def marked_from(links: ti.template(), heads, block):
+        """The first block of a weighted layer's ring from ``block`` on whose mark and whose group's are set (the
+        ring's count of blocks if none): the others list no cell. A group unmarked is passed a load."""
+        grouped = blocks_of(links, heads) >= _BLOCK
+        found = False
+        while block < blocks_of(links, heads) and not found:
+            if grouped and block % _BLOCK == 0 and links[1, group_mark_of(links, heads, block // _BLOCK)] == 0:
+                block += _BLOCK
+            elif links[1, mark_of(heads, block)] == 0:
+                block += 1
+            else:
+                found = True
+        return block
+
+    @ti.func
+    def next_listing(links: ti.template(), heads, slot):
+        """The bucket of a weighted layer's ring after ``slot`` (-1: its first) that may list a cell, the next in a
+        marked block of a marked group (``marked_from``); the ring's size past its last."""
+        slot += 1
+        if slot % _BLOCK == 0:
+            slot = marked_from(links, heads, slot // _BLOCK) * _BLOCK
+        return slot
+
+    @ti.func
+    def empty_bucket(links: ti.template(), heads, slot):
+        """Take every cell out of bucket ``slot``."""
+        while links[0, heads + slot] >= 0:
+            unlink(links, heads, links[0, heads + slot])
+
+    @ti.func
     def clear(links: ti.template(), heads):
-        """Empty every bucket of the ring (its heads start at ``heads``); on a weighted layer only the blocks
-        marked (a ring of 4 million buckets at costs of 1e6, cleared by every search and mend)."""
+        """Empty every bucket of the ring (its heads start at ``heads``); on a weighted layer only the blocks marked,
+        of the groups marked (``marked_from``: a ring of 4 million buckets at costs of 1e6, cleared by every search
+        and mend, reads 1,024 group marks where it read 65,536 block marks)."""
         if ti.static(weighted):
-            for block in range((links.shape[1] - heads) // _BLOCK):
-                if links[1, mark_of(heads, block)] != 0:
-                    for slot in range(block * _BLOCK, (block + 1) * _BLOCK):
-                        links[0, heads + slot] = _UNLISTED
-                    links[1, mark_of(heads, block)] = 0
+            slot = next_listing(links, heads, -1)
+            while slot < links.shape[1] - heads:
+                links[0, heads + slot] = _UNLISTED
+                links[1, mark_of(heads, slot // _BLOCK)] = 0
+                slot = next_listing(links, heads, slot)
+            for group in range(blocks_of(links, heads) // _BLOCK):
+                links[1, group_mark_of(links, heads, group)] = 0
         else:
             for slot in range(links.shape[1] - heads):
                 links[0, heads + slot] = _UNLISTED
@@ -1424,36 +1470,58 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         if first >= 0:
             links[1, first] = c
         links[0, heads + slot] = c
-        if ti.static(weighted):
+        if ti.static(weighted):  # (a ring of fewer than _GROUP buckets marks its one group, read by ``clear`` alone)
             links[1, mark_of(heads, slot // _BLOCK)] = 1
+            links[1, group_mark_of(links, heads, slot // _GROUP)] = 1
+
+    @ti.func
+    def empty_group(links: ti.template(), heads, group):
+        """Whether group ``group`` lists no cell: its mark is 0, or each of its blocks' is (its mark then cleared)."""
+        empty = links[1, group_mark_of(links, heads, group)] == 0
+        if not empty:
+            empty = True
+            for block in range(group * _BLOCK, (group + 1) * _BLOCK):
+                if links[1, mark_of(heads, block)] != 0:
+                    empty = False
+            if empty:
+                links[1, group_mark_of(links, heads, group)] = 0
+        return empty
 
     @ti.func
     def next_listed(links: ti.template(), heads, bucket):
         """The first bucket from ``bucket`` on that lists a cell (one does: the cells listed lie in the ring's
-        buckets ahead): a block of _BLOCK buckets a load of its mark where that is 0 (the marks lie together; a
-        block's heads, a cache line apart, are not read), else a bucket a load; a block found empty from its first
-        bucket on has its mark cleared (cells leave buckets without clearing it). Dial's buckets are one unit of
-        distance wide: on a weighted layer whose costs reach thousands most are empty, each a pass of a search's loop
-        (6-7 ns: a map of 36,000 cells whose distances reach 4e7 took 300 ms to search, 36 ms skipping them a bucket
-        a load - RESULTS §10). A binary layer's moves leave at most two empty in a row, and the check cost its
-        repairs 1-5 % (``benchmarks.ab``): weighted only."""
+        buckets ahead): a group of _GROUP buckets a load of its mark where that is 0 (``empty_group``), a block of
+        _BLOCK buckets a load of its mark where that is 0 (the marks lie together; a block's heads, a cache line
+        apart, are not read), else a bucket a load; a block found empty from its first bucket on has its mark
+        cleared (cells leave buckets without clearing it). Dial's buckets are one unit of distance wide: on a
+        weighted layer whose costs reach thousands most are empty, each a pass of a search's loop (6-7 ns: a map of
+        36,000 cells whose distances reach 4e7 took 300 ms to converge, 36 ms skipping them a bucket a load, 12 ms
+        a block a load, 4.3 ms a group or a block a load, its hand-over walking the marks too - RESULTS §10). A
+        binary layer's moves leave at most two empty in a row, and the check cost its repairs 1-5 %
+        (``benchmarks.ab``): weighted only."""
         mask = links.shape[1] - heads - 1
+        grouped = mask >= _GROUP - 1
         found = False
         while not found:
-            mark = mark_of(heads, (bucket & mask) // _BLOCK)
-            end = (bucket | (_BLOCK - 1)) + 1
-            if links[1, mark] == 0:
-                bucket = end
+            slot = bucket & mask
+            if grouped and slot & (_GROUP - 1) == 0 and empty_group(links, heads, slot // _GROUP):
+                bucket += _GROUP
             else:
-                whole = bucket & (_BLOCK - 1) == 0
-                while bucket < end and links[0, heads + (bucket & mask)] < 0:
-                    bucket += 1
-                found = bucket < end
-                if whole and not found:
-                    links[1, mark] = 0
+                mark = mark_of(heads, slot // _BLOCK)
+                end = (bucket | (_BLOCK - 1)) + 1
+                if links[1, mark] == 0:
+                    bucket = end
+                else:
+                    whole = bucket & (_BLOCK - 1) == 0
+                    while bucket < end and links[0, heads + (bucket & mask)] < 0:
+                        bucket += 1
+                    found = bucket < end
+                    if whole and not found:
+                        links[1, mark] = 0
         return bucket
 
-    return SimpleNamespace(unlink=unlink, link=link, clear=clear, take_first=take_first, next_listed=next_listed)
+    return SimpleNamespace(unlink=unlink, link=link, clear=clear, take_first=take_first, next_listed=next_listed,
+                           next_listing=next_listing, empty_bucket=empty_bucket)
 
 
 def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
@@ -1469,6 +1537,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     moves, move_cost, penalty, plus, bucket_of = cell.moves, cell.move_cost, cell.penalty, cell.plus, cell.bucket
     buckets = _bucket_rules(cell.weighted)
     unlink, link, clear, take_first = buckets.unlink, buckets.link, buckets.clear, buckets.take_first
+    next_listing = buckets.next_listing
     straight = tuple(m for m in moves if not stencil.through_corner(m))
     cornered = tuple(m for m in moves if stencil.through_corner(m))
 
@@ -1580,16 +1649,30 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                     for b in range(stamps.shape[2]):
                         stamps[g, a, b] = -1
                         keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
+        heads = values.shape[1] * values.shape[2]
+        if ti.static(cell.weighted):  # the marked blocks alone: a ring of 4 million buckets read head by head took
+            slot = next_listing(links, heads, -1)  # 7 ms of every search and mend at costs of 1e6
+            while slot < links.shape[1] - heads:
+                stamp_listed(values, stamps, keys, links, tick, slot)
+                slot = next_listing(links, heads, slot)
+        else:
+            for slot in range(links.shape[1] - heads):
+                stamp_listed(values, stamps, keys, links, tick, slot)
+
+    @ti.func
+    def stamp_listed(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick,
+                     slot):
+        """Take each cell out of bucket ``slot``, its tile stamped for round ``tick`` with the cell's value as its
+        lowering key (``hand_over``)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
-        for slot in range(links.shape[1] - heads):
-            while links[0, heads + slot] >= 0:
-                c = take_first(links, heads, slot)
-                i, j = _cell_at(c, width)
-                _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
+        while links[0, heads + slot] >= 0:
+            c = take_first(links, heads, slot)
+            i, j = _cell_at(c, width)
+            _stamp_near(stamps, keys, None, 0, i - PAD, j - PAD, tick, 0, _LOWER, values[0, i, j])
 
     return SimpleNamespace(hand_over=hand_over, empty=empty, priority=priority, link=link, unlink=unlink, clear=clear,
-                           log=log, past_focus=past_focus, next_listed=buckets.next_listed,
-                           weighted=cell.weighted)
+                           log=log, past_focus=past_focus, next_listed=buckets.next_listed, next_listing=next_listing,
+                           empty_bucket=buckets.empty_bucket, weighted=cell.weighted)
 
 
 def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
@@ -1976,7 +2059,8 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
     searching = _search_rules(cell, logged)
     empty, priority, link, unlink, clear, log = (searching.empty, searching.priority, searching.link, searching.unlink,
                                                  searching.clear, searching.log)
-    next_listed, past_focus = searching.next_listed, searching.past_focus
+    next_listed, next_listing, past_focus = searching.next_listed, searching.next_listing, searching.past_focus
+    empty_bucket = searching.empty_bucket
 
     @ti.func
     def start(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(), focus_row,
@@ -2105,9 +2189,14 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
             if links[1, c] != _UNLISTED:
                 unlink(links, heads, c)
         if race[_FROM] == _SEEDED:
-            for slot in range(links.shape[1] - heads):
-                while links[0, heads + slot] >= 0:
-                    unlink(links, heads, links[0, heads + slot])
+            if ti.static(weighted):  # the marked blocks alone (``_search_rules``' ``hand_over``)
+                slot = next_listing(links, heads, -1)
+                while slot < links.shape[1] - heads:
+                    empty_bucket(links, heads, slot)
+                    slot = next_listing(links, heads, slot)
+            else:
+                for slot in range(links.shape[1] - heads):
+                    empty_bucket(links, heads, slot)
 
     @ti.func
     def hand_log(links: ti.template(), race, into: ti.template(), heads):
