@@ -2069,8 +2069,8 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
         or, with ``below`` 0 or more, a race that waits to start from the cells a mend's edits left below that value
         (``seed``, once the mend has looked at or raised ``passing`` cells: ``pace``), those from ``band`` on its
         seeds. A mend's race finds its buckets empty (a race empties them, to its end or in ``clean``), and its log
-        is read only as far as it logs (``hand_log``); the search's buckets are cleared (a mend's raise queues cells
-        round the whole of their row 0) and its log too (a mend reads it whole: ``kept``)."""
+        is read only as far as it logs (``hand_log``); the search's buckets are cleared (a binary layer's mend's raise
+        queues cells round the whole of their row 0) and its log too (a mend reads it whole: ``kept``)."""
         width, heads = values.shape[2], values.shape[1] * values.shape[2]
         if ti.static(not logged):
             clear(links, heads)
@@ -2230,9 +2230,14 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
     moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
 
     @ti.func
-    def after(links: ti.template(), index):
-        """The entry after ``index`` in the raise's ring (row 0 of ``links``)."""
-        return ti.select(index + 1 == links.shape[1], 0, index + 1)
+    def after(values: ti.template(), links: ti.template(), index):
+        """The entry after ``index`` in the raise's ring, row 0 of ``links``: on a weighted layer its cells' entries
+        alone (a cell is queued once at most, so fewer entries than cells), whose buckets' heads ``clear`` empties
+        only where marked and so must hold no queue entry."""
+        end = links.shape[1]
+        if ti.static(cell.weighted):
+            end = values.shape[1] * values.shape[2]
+        return ti.select(index + 1 == end, 0, index + 1)
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, tail, i, j):
@@ -2242,7 +2247,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         if links[1, c] == _UNLISTED and values[0, i, j] < cap:
             links[1, c] = _STACKED
             links[0, tail] = c
-            tail = after(links, tail)
+            tail = after(values, links, tail)
         return tail
 
     @ti.func
@@ -2279,7 +2284,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         head, tail, raised, waiting, rose = (rising[_NEXT], rising[_END], rising[_RAISED], rising[_DEFERRING],
                                              rising[_ROSE])
         c = links[0, head]
-        head = after(links, head)
+        head = after(values, links, head)
         links[1, c] = _UNLISTED
         i, j = _cell_at(c, values.shape[2])
         value = values[0, i, j]
@@ -2307,7 +2312,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return ti.Vector([head, tail, raised, waiting, rose]), went_up
 
     @ti.func
-    def raise_end(links: ti.template(), trail: ti.template(), rising):
+    def raise_end(values: ti.template(), links: ti.template(), trail: ti.template(), rising):
         """The raise's end, its queue run dry or its mend over budget: the cells waiting are kept (every cell their
         relaxation goes through stayed), and the queue is emptied (for the restart)."""
         for k in range(rising[_DEFERRING]):
@@ -2315,7 +2320,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         head = rising[_NEXT]
         while head != rising[_END]:
             links[1, links[0, head]] = _UNLISTED
-            head = after(links, head)
+            head = after(values, links, head)
 
     @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -2672,7 +2677,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     if rose:
                         most, seeding = racing.paced(race, looked[1] + rising[_RAISED])
                 else:
-                    raise_end(links, trail, rising)
+                    raise_end(values, links, trail, rising)
                     left, phase = race, _RAISE_OVER
                     if not raising or spent > budget or racing.over(spare, race):
                         gave_up, most, seeding = 1, _NEVER, True  # the race runs to its end: the restart
