@@ -159,8 +159,7 @@ def hall_cases(rows: int, cols: int) -> list[tuple[str, np.ndarray, tuple[int, i
 def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
     """A perfect maze and its goals (``walled_goals``: the corner room first)."""
     occupied = maze(size, corridor, seed=size + corridor)
-    return [(f"maze {size}² {corridor}-cell {place}", occupied, goal)
-            for place, goal in walled_goals(occupied).items()]
+    return goal_cases(f"maze {size}² {corridor}-cell ", occupied, walled_goals(occupied))
 
 
 def walled_goals(occupied: np.ndarray) -> dict[str, tuple[int, int]]:
@@ -186,7 +185,7 @@ def serpentine(size: int) -> np.ndarray:
 def serpentine_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
     """A serpentine (``serpentine``) and its goals (``walled_goals``: the corridor's first cell first)."""
     occupied = serpentine(size)
-    return [(f"serpentine {size}² {place}", occupied, goal) for place, goal in walled_goals(occupied).items()]
+    return goal_cases(f"serpentine {size}² ", occupied, walled_goals(occupied))
 
 
 def rings(size: int) -> np.ndarray:
@@ -209,7 +208,7 @@ def rings(size: int) -> np.ndarray:
 def rings_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
     """Rings (``rings``) and their goals (``walled_goals``: the outer corridor's corner first)."""
     occupied = rings(size)
-    return [(f"rings {size}² {place}", occupied, goal) for place, goal in walled_goals(occupied).items()]
+    return goal_cases(f"rings {size}² ", occupied, walled_goals(occupied))
 
 
 def caves(size: int) -> np.ndarray:
