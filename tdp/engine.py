@@ -242,6 +242,10 @@ MIN_RING = 1024
 _BLOCK = 64
 #: ... and that one group mark covers, _BLOCK blocks (a ring of 4096 buckets or more: a 4096th more of it in row 1).
 _GROUP = _BLOCK * _BLOCK
+#: A mark's values: no cell listed in its buckets since it was cleared - what the links are filled with when made, so
+#: that a new ring's first search or race walks none of its millions of buckets (at costs of 1e6 a field's first mend
+#: took 40 ms more than the next while its marks were made set) - or some may be.
+_UNMARKED, _MARKED = _UNLISTED, 1
 #: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
 #: the cells), which 2**15 a side keeps well inside.
 MAX_SIDE = 1 << 15
@@ -1372,10 +1376,10 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
     cells + the ring's buckets, ``_search_buckets``) int32: row 0 each listed cell's next cell in its bucket, and in
     its last entries each bucket's first (``heads`` is where they start); row 1 the previous cell, ``_UNLISTED``
     for a cell in no bucket, -2 - slot for the first of bucket ``slot``. Cells are flat indices into the padded
-    layer. A ``weighted`` layer's ring also keeps a mark per _BLOCK buckets in row 1 after the log's steps (0: no
-    cell listed in them since the mark was cleared; -1 when made), and after those a mark per _GROUP buckets (a
-    group of _BLOCK blocks, on a ring of _GROUP buckets or more), so that ``next_listed`` passes an empty group or
-    block a load each and ``clear`` empties only the marked ones."""
+    layer. A ``weighted`` layer's ring also keeps a mark per _BLOCK buckets in row 1 after the log's steps
+    (``_UNMARKED``, as the links are made: no cell listed in them since the mark was cleared), and after those a
+    mark per _GROUP buckets (a group of _BLOCK blocks, on a ring of _GROUP buckets or more), so that
+    ``next_listed`` passes an empty group or block a load each and ``clear`` empties only the marked ones."""
 
     @ti.func
     def unlink(links: ti.template(), heads, c):
@@ -1422,9 +1426,9 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         grouped = blocks_of(links, heads) >= _BLOCK
         found = False
         while block < blocks_of(links, heads) and not found:
-            if grouped and block % _BLOCK == 0 and links[1, group_mark_of(links, heads, block // _BLOCK)] == 0:
+            if grouped and block % _BLOCK == 0 and links[1, group_mark_of(links, heads, block // _BLOCK)] == _UNMARKED:
                 block += _BLOCK
-            elif links[1, mark_of(heads, block)] == 0:
+            elif links[1, mark_of(heads, block)] == _UNMARKED:
                 block += 1
             else:
                 found = True
@@ -1454,10 +1458,10 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
             slot = next_listing(links, heads, -1)
             while slot < links.shape[1] - heads:
                 links[0, heads + slot] = _UNLISTED
-                links[1, mark_of(heads, slot // _BLOCK)] = 0
+                links[1, mark_of(heads, slot // _BLOCK)] = _UNMARKED
                 slot = next_listing(links, heads, slot)
             for group in range(blocks_of(links, heads) // _BLOCK):
-                links[1, group_mark_of(links, heads, group)] = 0
+                links[1, group_mark_of(links, heads, group)] = _UNMARKED
         else:
             for slot in range(links.shape[1] - heads):
                 links[0, heads + slot] = _UNLISTED
@@ -1471,20 +1475,20 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
             links[1, first] = c
         links[0, heads + slot] = c
         if ti.static(weighted):  # (a ring of fewer than _GROUP buckets marks its one group, read by ``clear`` alone)
-            links[1, mark_of(heads, slot // _BLOCK)] = 1
-            links[1, group_mark_of(links, heads, slot // _GROUP)] = 1
+            links[1, mark_of(heads, slot // _BLOCK)] = _MARKED
+            links[1, group_mark_of(links, heads, slot // _GROUP)] = _MARKED
 
     @ti.func
     def empty_group(links: ti.template(), heads, group):
         """Whether group ``group`` lists no cell: its mark is 0, or each of its blocks' is (its mark then cleared)."""
-        empty = links[1, group_mark_of(links, heads, group)] == 0
+        empty = links[1, group_mark_of(links, heads, group)] == _UNMARKED
         if not empty:
             empty = True
             for block in range(group * _BLOCK, (group + 1) * _BLOCK):
-                if links[1, mark_of(heads, block)] != 0:
+                if links[1, mark_of(heads, block)] != _UNMARKED:
                     empty = False
             if empty:
-                links[1, group_mark_of(links, heads, group)] = 0
+                links[1, group_mark_of(links, heads, group)] = _UNMARKED
         return empty
 
     @ti.func
@@ -1509,7 +1513,7 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
             else:
                 mark = mark_of(heads, slot // _BLOCK)
                 end = (bucket | (_BLOCK - 1)) + 1
-                if links[1, mark] == 0:
+                if links[1, mark] == _UNMARKED:
                     bucket = end
                 else:
                     whole = bucket & (_BLOCK - 1) == 0
@@ -1517,7 +1521,7 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
                         bucket += 1
                     found = bucket < end
                     if whole and not found:
-                        links[1, mark] = 0
+                        links[1, mark] = _UNMARKED
         return bucket
 
     return SimpleNamespace(unlink=unlink, link=link, clear=clear, take_first=take_first, next_listed=next_listed,
