@@ -265,8 +265,12 @@ def largest_free_region(occupied: np.ndarray) -> np.ndarray:
     return np.argwhere(labels == np.argmax(np.bincount(labels.ravel())[1:]) + 1)
 
 
-def field_on(occupied: np.ndarray, goal, stencil: tuple[int, bool] = DEFAULT_STENCIL) -> tdp.DistanceField:
-    return tdp.DistanceField(tdp.GridMap(occupied), goal, neighbourhood=stencil[0], corner_cutting=stencil[1])
+def field_on(occupied: np.ndarray, goal, stencil: tuple[int, bool] = DEFAULT_STENCIL,
+             cost: np.ndarray | None = None) -> tdp.DistanceField:
+    """A field on ``occupied`` (and ``cost``, if given: a freed cell costs what it says, as ``set_occupied`` frees
+    a cell at the cost its map gave it)."""
+    return tdp.DistanceField(tdp.GridMap(occupied, cost=cost), goal, neighbourhood=stencil[0],
+                             corner_cutting=stencil[1])
 
 
 def stencil_name(stencil: tuple[int, bool]) -> str:
@@ -432,20 +436,20 @@ def scattered_edit(field: tdp.DistanceField, kind: str):
 
 
 def measure_repair(field: tdp.DistanceField, kind: str, reference: np.ndarray, repeats: int,
-                   stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
+                   stencil: tuple[int, bool] = DEFAULT_STENCIL, cost: np.ndarray | None = None) -> dict:
     """A repair case (``repair_edit``), timed by ``measure_edit``."""
     before = field.occupied.copy()
-    return measure_edit(field, kind, *repair_edit(field, kind, reference), before, repeats, stencil)
+    return measure_edit(field, kind, *repair_edit(field, kind, reference), before, repeats, stencil, cost)
 
 
 def measure_edit(field: tdp.DistanceField, kind: str, apply, undo, before: np.ndarray, repeats: int,
-                 stencil: tuple[int, bool] = DEFAULT_STENCIL) -> dict:
-    """An edit (``apply``, undone by ``undo``), then converge(), from the converged field (its map was ``before``),
-    against a fresh field's from-scratch converge() on the edited map, the two timed in turn; the ratio - of the
-    edit and the converge together, and of the converge alone - is the median of each pair's (the VM's speed drifts:
-    pairing keeps it out of the ratio). The field is left on its map, converged."""
+                 stencil: tuple[int, bool] = DEFAULT_STENCIL, cost: np.ndarray | None = None) -> dict:
+    """An edit (``apply``, undone by ``undo``), then converge(), from the converged field (its map was ``before``,
+    its costs ``cost`` if any), against a fresh field's from-scratch converge() on the edited map, the two timed in
+    turn; the ratio - of the edit and the converge together, and of the converge alone - is the median of each
+    pair's (the VM's speed drifts: pairing keeps it out of the ratio). The field is left on its map, converged."""
     apply()
-    fresh = field_on(field.occupied, field.goal, stencil)
+    fresh = field_on(field.occupied, field.goal, stencil, cost)
     undo()
     field.converge()
     start = field.distances().copy()

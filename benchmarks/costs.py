@@ -1,9 +1,10 @@
 """Graded costs: converge and repair on a cost grid against the same map binary, and against scipy's Dijkstra on the
 weighted graph.
 
-    python -m benchmarks.costs [--quick] [--dear]
+    python -m benchmarks.costs [--quick] [--dear | --edits]
 
---dear: the dear-corridor table alone (results/costs-dear.json).
+--dear: the dear-corridor table alone (results/costs-dear.json); --edits: the edits' table alone
+(results/costs-edits.json).
 
 For each map, a goal in its largest free region and two kinds of cost: ``inflation`` (nav2's inflation layer's
 shape: 1 + 49 exp(-0.3 (d - 1)) at d cells from the nearest obstacle, a steep gradient near walls) and ``random``
@@ -20,6 +21,12 @@ Dear cells: a hall joined to a room by a corridor whose cells cost ``DEAR_COSTS`
 distances reach 2**24 and past, where float32 stops telling a move of 1 apart (ARCHITECTURE §4): the converge from
 scratch against scipy's Dijkstra solve on the same weighted graph (timed in turn), the largest distance, whether the
 field equals Dijkstra's, and the repair after a 3 x 3 box in the room.
+
+Edits on cost grids: every repair of ``benchmarks.convergence`` (a box, a wall, a pocket sealed and opened, the goal
+sealed in, let out and in a room, a goal move, noise, eight boxes) on a random map, a maze with 1-cell corridors, a
+cave map and the ROS maps, each with both kinds of cost, against a fresh field's from-scratch converge on the same
+cost grid (``measure_repair``: the edit and its converge over the fresh converge, the median of the pairs' ratios),
+and whether the repaired field is bit-equal to the fresh one.
 """
 from __future__ import annotations
 
@@ -33,6 +40,7 @@ from scipy.sparse.csgraph import dijkstra
 import tdp
 from benchmarks.common import machine, paired_times, print_table, quick_parser, save_results, write_json
 from tdp.engine import ABSORBING
+from benchmarks import convergence
 from benchmarks.convergence import NAV2, ROBOT_RADIUS_M, ROOT, largest_free_region, ros_cases, route_middle
 from benchmarks.reference_graph import grid_graph
 from tdp.random_worlds import maze
@@ -181,6 +189,46 @@ def dear_rows(quick: bool, repeats: int) -> list[dict]:
                     "repair_ms": median_box_repair_ms(field, box, repeats)})
         print(f"  dear corridor, cost {dear:g}: done", flush=True)
     return out
+
+
+def edit_maps(quick: bool) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """(name, occupied, goal) of the edits' table: ``benchmarks.convergence``'s random map (64² quick, else 512²)
+    with the centre goal; in full its 1-cell maze of 512² (corner goal), cave map of 512² (random goal) and ROS maps
+    (turtlebot3's world and nav2's warehouse, the first goal)."""
+    if quick:
+        return [case for case in convergence.random_cases(64) if case[0].endswith("centre")]
+    picks = [(convergence.random_cases(512), "centre"), (convergence.maze_cases(512, 1), "corner"),
+             (convergence.caves_cases(512), "random"), (ros_cases(), "#0")]
+    return [case for cases, goal in picks for case in cases
+            if case[0].endswith(goal) and not case[0].startswith("nav2 depot")]
+
+
+def edit_rows(quick: bool, repeats: int) -> list[dict]:
+    """Every repair kind of ``benchmarks.convergence`` (``REPAIRS``) on each map of :func:`edit_maps` with each kind
+    of cost, against a fresh converge on the same cost grid (``measure_repair``). The cost grid holds 1 on the map's
+    obstacles: a cell freed takes what the grid says, and ``GridMap`` keeps 1 there."""
+    out = []
+    for name, occupied, goal in edit_maps(quick):
+        for kind in ("inflation", "random"):
+            cost = costs(occupied, kind)
+            cost[occupied] = 1.0
+            field = convergence.field_on(occupied, goal, cost=cost)
+            field.converge()
+            reference = field.distances()
+            for edit in convergence.REPAIRS:
+                row = convergence.measure_repair(field, edit, reference, repeats, cost=cost)
+                out.append({"map": name, "cost": kind, **row})
+            print(f"  edits on {name}, {kind}: done", flush=True)
+    return out
+
+
+def print_edits(rows: list[dict]) -> None:
+    """The edits' table: a row per map and kind of cost, a column per edit ((edit + converge) / fresh converge)."""
+    tables = list(dict.fromkeys((row["map"], row["cost"]) for row in rows))
+    print_table(["map", "cost", *convergence.REPAIRS, "all equal"],
+                [[name, kind, *(f"{row['ratio']:.2f}" for row in rows if (row["map"], row["cost"]) == (name, kind)),
+                  str(all(row["equal"] for row in rows if (row["map"], row["cost"]) == (name, kind)))]
+                 for name, kind in tables])
 
 
 def inflated(grid: tdp.GridMap) -> tuple[tdp.GridMap, tdp.GridMap]:
@@ -362,7 +410,9 @@ def print_dear(dear: list[dict]) -> None:
 
 def main() -> None:
     parser = quick_parser(__doc__)
-    parser.add_argument("--dear", action="store_true", help="the dear-corridor table alone")
+    alone = parser.add_mutually_exclusive_group()
+    alone.add_argument("--dear", action="store_true", help="the dear-corridor table alone")
+    alone.add_argument("--edits", action="store_true", help="the edits' table alone")
     args = parser.parse_args()
     repeats = QUICK_REPEATS if args.quick else REPEATS
     if args.dear:
@@ -370,6 +420,12 @@ def main() -> None:
         print_dear(dear)
         name = "costs-dear-quick" if args.quick else "costs-dear"
         print(f"wrote {write_json(name, {'machine': machine(), 'dear': dear})}")
+        return
+    if args.edits:
+        edits = edit_rows(args.quick, repeats)
+        print_edits(edits)
+        name = "costs-edits-quick" if args.quick else "costs-edits"
+        print(f"wrote {write_json(name, {'machine': machine(), 'edits': edits})}")
         return
     rows = []
     for name, occupied, goal in maps(args.quick):
@@ -382,6 +438,8 @@ def main() -> None:
                  for r in rows])
     dear = dear_rows(args.quick, repeats)
     print_dear(dear)
+    edits = edit_rows(args.quick, repeats)
+    print_edits(edits)
     paths = clearance(args.quick)
     print_table(["map", "pair", "clearance, costed / binary", "length, costed / binary"],
                 [[r["map"], str(r["pair"]), f"{r['clearance_ratio']:.2f}", f"{r['length_ratio']:.2f}"] for r in paths])
@@ -392,7 +450,7 @@ def main() -> None:
     grid_rows, bullet_rows = grid_episodes(args.quick), pybullet_episodes(args.quick)
     print_episodes(grid_rows, bullet_rows)
     written = save_results("costs-quick" if args.quick else "costs",
-                           {"rows": rows, "dear": dear, "clearance": paths, "grid_episodes": grid_rows,
+                           {"rows": rows, "dear": dear, "edits": edits, "clearance": paths, "grid_episodes": grid_rows,
                             "pybullet_episodes": bullet_rows}, lambda path: figure(rows, path))
     figure_path = written.with_name("costs-paths-quick.png" if args.quick else "costs-paths.png")
     paths_figure(paths, figure_path)

@@ -23,6 +23,9 @@ ROOT = Path(__file__).resolve().parents[1]
 FILLED = {"convergence": "results", "worlds": "summary", "sweep": "rows", "costs": "rows", "predict": "summary",
           "warehouse": "rows", "blockage": "rows", "paper": "rows", "backends": "rows", "budget": "rows",
           "kernel": "results", "equal_time": "summary", "startup": "rows", "ab": "rows"}
+#: The rows of a script's JSON that each say whether its field equals a reference (``equal``): a quick run that finds
+#: one unequal fails, as the full run would be wrong.
+EQUAL_ROWS = {"convergence": "results", "costs": "edits"}
 #: The smoke process's limit, for a run that hangs: on a machine whose Taichi cache is cold, it compiles every kernel
 #: the scripts use beside the suite's own process (sweep, backends and predict took over 300 s each so on the 2-core
 #: VM at half speed, the twenty-fourth session, as processes of their own; all fourteen 315-355 s warm in one): the
@@ -92,5 +95,8 @@ def test_quick_benchmark_runs(script):
     assert "|" in outcome["stdout"]  # the table
     payload = json.loads((RESULTS / f"{script}-quick.json").read_text())
     assert payload[FILLED[script]] and payload["machine"]["cores"] >= 1
+    if script in EQUAL_ROWS:
+        rows = payload[EQUAL_ROWS[script]]
+        assert rows and all(row["equal"] for row in rows), [row for row in rows if not row["equal"]][:3]
     figure = RESULTS / ("paper-curves-quick.png" if script == "paper" else f"{script}-quick.png")
     assert figure.stat().st_size > 1000
