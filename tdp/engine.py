@@ -1508,7 +1508,10 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         found = False
         while not found:
             slot = bucket & mask
-            if grouped and slot & (_GROUP - 1) == 0 and empty_group(links, heads, slot // _GROUP):
+            passed = False
+            if grouped and slot & (_GROUP - 1) == 0:  # nested: in one ``and``, Taichi runs ``empty_group`` (a loop of
+                passed = empty_group(links, heads, slot // _GROUP)  # 64 loads) at every pass, grouped or not (§7)
+            if passed:
                 bucket += _GROUP
             else:
                 mark = mark_of(heads, slot // _BLOCK)
