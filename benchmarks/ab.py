@@ -1,6 +1,6 @@
 """Two versions of the engine side by side in one process, for an engine change's A/B.
 
-    python -m benchmarks.ab [BEFORE [AFTER]] [--pairs N] [--quick]
+    python -m benchmarks.ab [BEFORE [AFTER]] [--pairs N] [--costs {inflation,random}] [--quick]
 
 BEFORE and AFTER are git revisions of this repository (BEFORE: HEAD when left out; AFTER: the working tree, so that
 a plain run times an uncommitted change against the last commit). A revision's ``tdp`` is exported (``git
@@ -10,7 +10,9 @@ Each pass times both, one after the other, the first swapped every pass: a from-
 a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze
 and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a pass of both takes
 milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the geometric mean. Both
-versions' fields are checked equal before the timing starts.
+versions' fields are checked equal before the timing starts. With ``--costs``, every map carries a cost grid of that
+kind (``benchmarks.costs.costs``: nav2's inflation shape or uniform 1-10; 1 on obstacles), so that a change to the
+weighted layers' kernels is timed where robots meet it (results/ab-costs-KIND.json).
 
 Why one process, pass by pass: this VM's speed drifts between processes by 10-20 % for the same code, and within a
 process over seconds. In the twenty-first session an A/B in alternating processes credited a change with searches
@@ -33,7 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
-from benchmarks import convergence
+from benchmarks import convergence, costs
 from benchmarks.common import print_table, quick_parser, save_results
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -100,10 +102,23 @@ def one_pass(field, edits: dict) -> dict[str, float]:
     return seconds
 
 
-def compare(versions: dict, name: str, occupied: np.ndarray, goal, pairs: int) -> list[dict]:
-    """Both versions on one map, ``pairs`` passes of each in turn (the first of each a warm-up, the order swapped
-    every pass): one row per kind - each version's median ms and the median of the passes' after / before."""
-    fields = {label: package.DistanceField(package.GridMap(occupied), goal) for label, package in versions.items()}
+def cost_grid(occupied: np.ndarray, kind: str | None) -> np.ndarray | None:
+    """The cost grid of ``kind`` on the map (``benchmarks.costs.costs``), 1 on its obstacles as ``GridMap`` keeps
+    them; None for no kind (a binary map)."""
+    if kind is None:
+        return None
+    grid = costs.costs(occupied, kind)
+    grid[occupied] = 1.0
+    return grid
+
+
+def compare(versions: dict, name: str, occupied: np.ndarray, goal, pairs: int, cost: np.ndarray | None = None
+            ) -> list[dict]:
+    """Both versions on one map (with ``cost``, if given), ``pairs`` passes of each in turn (the first of each a
+    warm-up, the order swapped every pass): one row per kind - each version's median ms and the median of the
+    passes' after / before."""
+    fields = {label: package.DistanceField(package.GridMap(occupied, cost=cost), goal)
+              for label, package in versions.items()}
     for field in fields.values():
         field.converge()
     before, after = (field.distances() for field in fields.values())
@@ -149,6 +164,8 @@ def main() -> None:
     parser.add_argument("before", nargs="?", default="HEAD", help="a git revision of this repository (default HEAD)")
     parser.add_argument("after", nargs="?", help="another revision (default: the working tree)")
     parser.add_argument("--pairs", type=int, default=None, help=f"passes of both versions a map (default {PAIRS})")
+    parser.add_argument("--costs", choices=("inflation", "random"), default=None,
+                        help="give every map a cost grid of this kind (default: binary maps)")
     args = parser.parse_args()
     pairs = args.pairs if args.pairs is not None else (QUICK_PAIRS if args.quick else PAIRS)
     if pairs < 1:
@@ -165,7 +182,7 @@ def main() -> None:
         versions = {"before": loaded("tdp_before", before_root), "after": loaded("tdp_after", after_root)}
         rows = []
         for name, occupied, goal in cases(QUICK_MAPS if args.quick else MAPS):
-            rows += compare(versions, name, occupied, goal, pairs)
+            rows += compare(versions, name, occupied, goal, pairs, cost_grid(occupied, args.costs))
             print(f"  {name}: " + ", ".join(f"{row['kind']} {row['ratio']:.2f}x" for row in rows[-len(KINDS):]),
                   flush=True)
     means = {kind: math.exp(statistics.fmean(math.log(row["ratio"]) for row in rows if row["kind"] == kind))
@@ -174,8 +191,10 @@ def main() -> None:
                 [[row["map"], row["kind"], f"{row['before_ms']:.3f}", f"{row['after_ms']:.3f}", f"{row['ratio']:.2f}"]
                  for row in rows])
     print_table(["kind", "geometric mean after / before"], [[kind, f"{mean:.3f}"] for kind, mean in means.items()])
-    save_results("ab-quick" if args.quick else "ab",
-                 {"before": args.before, "after": args.after or "working tree", "pairs": pairs, "rows": rows,
+    name = "ab" if args.costs is None else f"ab-costs-{args.costs}"
+    save_results(f"{name}-quick" if args.quick else name,
+                 {"before": args.before, "after": args.after or "working tree", "pairs": pairs, "costs": args.costs,
+                  "rows": rows,
                   "geometric_means": means}, lambda path: figure(rows, path))
 
 
