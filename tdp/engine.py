@@ -243,8 +243,8 @@ _BLOCK = 64
 #: ... and that one group mark covers, _BLOCK blocks (a ring of 4096 buckets or more: a 4096th more of it in row 1).
 _GROUP = _BLOCK * _BLOCK
 #: A mark's values: no cell listed in its buckets since it was cleared - what the links are filled with when made, so
-#: that a new ring's first search or race walks none of its millions of buckets (at costs of 1e6 a field's first mend
-#: took 40 ms more than the next while its marks were made set) - or some may be.
+#: that a new ring's first clear, hand-over or race walks none of its buckets (made set, they were all walked once:
+#: neutral as measured, the first mend at costs of 1e6 spending its 40 ms on allocating the links) - or some may be.
 _UNMARKED, _MARKED = _UNLISTED, 1
 #: Padded cells a layer may have a side: kernels index a padded cell row-major in an int32 (the search's buckets after
 #: the cells), which 2**15 a side keeps well inside.
@@ -1474,13 +1474,13 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         if first >= 0:
             links[1, first] = c
         links[0, heads + slot] = c
-        if ti.static(weighted):  # (a ring of fewer than _GROUP buckets marks its one group, read by ``clear`` alone)
+        if ti.static(weighted):  # (a ring of fewer than _GROUP buckets marks its one group, which nothing reads)
             links[1, mark_of(heads, slot // _BLOCK)] = _MARKED
             links[1, group_mark_of(links, heads, slot // _GROUP)] = _MARKED
 
     @ti.func
     def empty_group(links: ti.template(), heads, group):
-        """Whether group ``group`` lists no cell: its mark is 0, or each of its blocks' is (its mark then cleared)."""
+        """Whether group ``group`` lists no cell: it is unmarked, or each of its blocks is (it is then unmarked)."""
         empty = links[1, group_mark_of(links, heads, group)] == _UNMARKED
         if not empty:
             empty = True
@@ -1494,8 +1494,8 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
     @ti.func
     def next_listed(links: ti.template(), heads, bucket):
         """The first bucket from ``bucket`` on that lists a cell (one does: the cells listed lie in the ring's
-        buckets ahead): a group of _GROUP buckets a load of its mark where that is 0 (``empty_group``), a block of
-        _BLOCK buckets a load of its mark where that is 0 (the marks lie together; a block's heads, a cache line
+        buckets ahead): a group of _GROUP buckets a load of its mark where unmarked (``empty_group``), a block of
+        _BLOCK buckets a load of its mark where unmarked (the marks lie together; a block's heads, a cache line
         apart, are not read), else a bucket a load; a block found empty from its first bucket on has its mark
         cleared (cells leave buckets without clearing it). Dial's buckets are one unit of distance wide: on a
         weighted layer whose costs reach thousands most are empty, each a pass of a search's loop (6-7 ns: a map of
