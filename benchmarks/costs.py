@@ -408,6 +408,18 @@ def print_dear(dear: list[dict]) -> None:
                  for r in dear])
 
 
+#: The tables the command line may run alone (``--dear``, ``--edits``): how each is measured and printed.
+TABLES = {"dear": (dear_rows, print_dear), "edits": (edit_rows, print_edits)}
+
+
+def table_rows(table: str, quick: bool, repeats: int) -> list[dict]:
+    """The rows of one of TABLES, measured and printed."""
+    measure_rows, show = TABLES[table]
+    rows = measure_rows(quick, repeats)
+    show(rows)
+    return rows
+
+
 def main() -> None:
     parser = quick_parser(__doc__)
     alone = parser.add_mutually_exclusive_group()
@@ -415,18 +427,12 @@ def main() -> None:
     alone.add_argument("--edits", action="store_true", help="the edits' table alone")
     args = parser.parse_args()
     repeats = QUICK_REPEATS if args.quick else REPEATS
-    if args.dear:
-        dear = dear_rows(args.quick, repeats)
-        print_dear(dear)
-        name = "costs-dear-quick" if args.quick else "costs-dear"
-        print(f"wrote {write_json(name, {'machine': machine(), 'dear': dear})}")
-        return
-    if args.edits:
-        edits = edit_rows(args.quick, repeats)
-        print_edits(edits)
-        name = "costs-edits-quick" if args.quick else "costs-edits"
-        print(f"wrote {write_json(name, {'machine': machine(), 'edits': edits})}")
-        return
+    for table in TABLES:
+        if getattr(args, table):
+            rows = table_rows(table, args.quick, repeats)
+            name = f"costs-{table}-quick" if args.quick else f"costs-{table}"
+            print(f"wrote {write_json(name, {'machine': machine(), table: rows})}")
+            return
     rows = []
     for name, occupied, goal in maps(args.quick):
         for kind in ("inflation", "random"):
@@ -436,10 +442,7 @@ def main() -> None:
                 [[r["map"], r["cost"], f"{r['scratch_ms']:.2f}", f"{r['binary_scratch_ms']:.2f}",
                   f"{r['scratch_ratio']:.2f}", f"{r['repair_ms']:.2f}", f"{r['repair_ratio']:.2f}", str(r["equal"])]
                  for r in rows])
-    dear = dear_rows(args.quick, repeats)
-    print_dear(dear)
-    edits = edit_rows(args.quick, repeats)
-    print_edits(edits)
+    dear, edits = (table_rows(table, args.quick, repeats) for table in ("dear", "edits"))
     paths = clearance(args.quick)
     print_table(["map", "pair", "clearance, costed / binary", "length, costed / binary"],
                 [[r["map"], str(r["pair"]), f"{r['clearance_ratio']:.2f}", f"{r['length_ratio']:.2f}"] for r in paths])
