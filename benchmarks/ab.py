@@ -53,6 +53,7 @@ MAPS = [(convergence.random_cases, (256,), ("random 256² corner", "random 256²
         (convergence.maze_cases, (512, 1), ("maze 512² 1-cell corner",)),
         (convergence.maze_cases, (512, 2), ("maze 512² 2-cell random",)),
         (convergence.serpentine_cases, (512,), ("serpentine 512² centre",)),
+        (convergence.rings_cases, (512,), ("rings 512² centre",)),
         (convergence.ros_cases, (), ("turtlebot3_world #0", "nav2 depot #0"))]
 QUICK_MAPS = [(convergence.random_cases, (64,), ("random 64² corner",)),
               (convergence.random_cases, (128,), ("random 128² random",)),
