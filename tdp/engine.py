@@ -146,6 +146,10 @@ EDIT_COST = 4
 #: converge, but noise on random maps, whose mend finishes with the race beside it, cost 1.3-1.5x more (ARCHITECTURE
 #: §7). It runs only where it could win (``race_lead``).
 RACE_LEAD = 2
+#: The share of a map's free cells in corridors a cell wide from which a mend's raise goes depth first
+#: (``depth_first_raise``): 1-cell mazes, rings and serpentines have nearly all their free cells so, random maps
+#: with 20 % obstacles 18 % and with 40 % about half, 2-cell mazes and open ROS maps few.
+CORRIDOR_SHARE = 2 / 3
 #: Where the look found the edits' sides apart, the race gets a head start in the raise: the cells nearer the source
 #: than the edits (``kept``: the log's count, a lower bound on what the source still reaches), which a race that wins
 #: must take first, and then keeps its lead - a goal sealed in a room is mended at 1 + (1 - kept / reached) /
@@ -339,7 +343,8 @@ class _MendRun(NamedTuple):
     value (``_longest_move``), its race's lead (RACE_LEAD) and the most cells its head start may be
     (RACE_HEAD_SHARE of a restart), the mend's work a race from the kept cells waits for and the price of its pass
     (``seed_bound``: SEED_AFTER and SEED_PASS), whether every tile is settled already (1: the hand-over stamps the
-    frontier alone), and whether to mend (0: a launch that only compiles)."""
+    frontier alone), whether the raise takes the cell queued last first (``depth_first_raise``), and whether to mend
+    (0: a launch that only compiles)."""
 
     focus_row: int
     focus_col: int
@@ -355,6 +360,7 @@ class _MendRun(NamedTuple):
     seed_wait: int
     seed_pass: int
     settled: int
+    depth_first: int
     go: int
 
 
@@ -1993,6 +1999,21 @@ def mend_work(looked: int, raised: int) -> int:
     return looked + RAISE_COST * raised
 
 
+def depth_first_raise(occupied: np.ndarray) -> bool:
+    """Whether a mend's raise should take the cell it queued last first (depth first) rather than the one queued
+    first, on a map of ``occupied`` cells (True = obstacle): where at least CORRIDOR_SHARE of the free cells have at
+    most two free cells among their four neighbours (outside the map counts as blocked) - corridors a cell wide. A
+    raise there follows a corridor depth first, along memory, where breadth first takes every branch and edit in
+    turn; in open ground, breadth first leaves the next cell's loads independent of the last one's checks
+    (``benchmarks.ab``, ARCHITECTURE §7). A pure rule over the map: the order changes the raise's speed, never its
+    result."""
+    free = np.pad(~np.asarray(occupied, bool), 1)
+    inner = free[1:-1, 1:-1]
+    neighbours = (free[:-2, 1:-1].astype(np.int8) + free[2:, 1:-1] + free[1:-1, :-2] + free[1:-1, 2:])
+    cells = int(np.count_nonzero(inner))
+    return cells > 0 and int(np.count_nonzero(inner & (neighbours <= 2))) >= CORRIDOR_SHARE * cells
+
+
 def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
     """Whether a source that now reaches ``reached`` cells (-1: not counted) lost so many of the cells the last search
     reached (a restart's price ``restart``, in cells a search takes, less the reset's ``fills``) that raising them
@@ -2237,14 +2258,24 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
     moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
 
     @ti.func
-    def after(values: ti.template(), links: ti.template(), index):
-        """The entry after ``index`` in the raise's ring, row 0 of ``links``: on a weighted layer its cells' entries
-        alone (a cell is queued once at most, so fewer entries than cells), whose buckets' heads ``clear`` empties
-        only where marked and so must hold no queue entry."""
+    def ring_end(values: ti.template(), links: ti.template()):
+        """The end of the raise's ring, row 0 of ``links``: on a weighted layer its cells' entries alone (a cell is
+        queued once at most, so fewer entries than cells), whose buckets' heads ``clear`` empties only where marked
+        and so must hold no queue entry."""
         end = links.shape[1]
         if ti.static(cell.weighted):
             end = values.shape[1] * values.shape[2]
-        return ti.select(index + 1 == end, 0, index + 1)
+        return end
+
+    @ti.func
+    def after(values: ti.template(), links: ti.template(), index):
+        """The entry after ``index`` in the raise's ring."""
+        return ti.select(index + 1 == ring_end(values, links), 0, index + 1)
+
+    @ti.func
+    def before(values: ti.template(), links: ti.template(), index):
+        """The entry before ``index`` in the raise's ring."""
+        return ti.select(index == 0, ring_end(values, links), index) - 1
 
     @ti.func
     def push(values: ti.template(), links: ti.template(), cap, tail, i, j):
@@ -2270,7 +2301,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def raise_step(values: ti.template(), pen: ti.template(), header: ti.template(), links: ti.template(),
-                   trail: ti.template(), cap, rising):
+                   trail: ti.template(), cap, rising, depth_first):
         """The raise's next cell (its queue not empty), after edits on a layer at its fixed point before them: a
         cell below its relaxation - its route went through a cell now blocked or dearer, or through a cell raised
         here - jumps to the cap (D* Lite's underconsistent states), its dependants queued after it. The queue is
@@ -2278,8 +2309,12 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         wait for; the next cell is known long before its turn, so the processor loads it while the last one is
         checked, where a stack's next was mostly the cell just pushed (``benchmarks.ab``: boxes 0.95x and walls
         0.90x a stack's, geometric means over nine maps - random and ROS maps 0.80-0.99x, mazes 0.99-1.04x -, the
-        goal sealed in a room 1.02x). The order does not matter for the result: a cell looked at before its last
-        route rose is a dependant of the cell that rises, and is looked at again. Only a raised cell's dependants -
+        goal sealed in a room 1.02x). On maps of corridors a cell wide (``depth_first``: ``depth_first_raise``) it
+        takes the cell queued last instead: breadth first there takes every branch of a maze and every edit in turn,
+        a cell's loads far from the last one's, where depth first follows one corridor along memory (noise on the
+        rings 0.75x, boxes across a 1-cell maze's route 0.88x; ARCHITECTURE §7). The order does not matter for the
+        result: a cell looked at before its last route rose is a dependant of the cell that rises, and is looked at
+        again. Only a raised cell's dependants -
         neighbours whose value is its old one plus their move to it - are looked at again. A cell that relaxes
         below its value (a cell freed or made cheaper by the same edits opened a move to it) may do so through a
         neighbour not raised yet, of which it is no dependant: it waits in row 1 of ``trail`` and is looked at again
@@ -2290,8 +2325,13 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         of ``trail``. Returns the raise's ints and whether the cell rose."""
         head, tail, raised, waiting, rose = (rising[_NEXT], rising[_END], rising[_RAISED], rising[_DEFERRING],
                                              rising[_ROSE])
-        c = links[0, head]
-        head = after(values, links, head)
+        c = 0
+        if depth_first:  # the cell queued last (``depth_first_raise``)
+            tail = before(values, links, tail)
+            c = links[0, tail]
+        else:
+            c = links[0, head]
+            head = after(values, links, head)
         links[1, c] = _UNLISTED
         i, j = _cell_at(c, values.shape[2])
         value = values[0, i, j]
@@ -2680,7 +2720,8 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     rising = raise_start(values, links, cells, cap, raising)
                     phase = _RAISING
                 elif rising[_NEXT] != rising[_END] and spent <= budget and not racing.over(spare, race):
-                    rising, rose = raise_step(values, pen, header, links, trail, cap, rising)
+                    rising, rose = raise_step(values, pen, header, links, trail, cap, rising,
+                                              run[_MEND.depth_first])
                     if rose:
                         most, seeding = racing.paced(race, looked[1] + rising[_RAISED])
                 else:
@@ -3014,6 +3055,7 @@ class _LayerArrays:
         # and a mend's hand-over then sweeps none. A mend follows one of those, or rounds of tiles that reached the
         # fixed point (they clear it), with only edits since: the paint of one read before its converge clears it.
         self.tiles_settled = False
+        self.depth_first = False  # whether a mend's raise takes the cell queued last first (``depth_first_raise``)
         self.activate_all()
 
     def reprice(self, cells: np.ndarray, costs: np.ndarray) -> None:
@@ -3436,7 +3478,7 @@ class _Layers(_LayerArrays):
         seed_pass = self.padded_cells // SEED_PASS  # a race from the kept cells: its pass, in cells a search takes
         run = _launch(_MendRun(*(focus or _NO_FOCUS), self.tick, restart_tick, budget, restart, fills, looks,
                                self.longest_move, RACE_LEAD, int(RACE_HEAD_SHARE * restart), SEED_AFTER * seed_pass,
-                               seed_pass, int(self.tiles_settled), go=1), _MendResult)
+                               seed_pass, int(self.tiles_settled), int(self.depth_first), go=1), _MendResult)
         self.kernels.mend(values=self.values, pen=self.pen, stamps=self.stamps, keys=self.keys, header=self.header,
                           links=self.links, trail=self.trail, cells=cells, penalties=penalties, cap=self.cap,
                           spare=self.spare, race_links=self.race_links, run=run)
@@ -3612,6 +3654,7 @@ class Engine:
         self._goal = _Layers(kernels(0, self.cost is not None, absorbing), 1, (self.rows, self.cols),
                              np.zeros((1, 2), np.int32), (self.goal[0] + PAD, self.goal[1] + PAD), self.goal_cap,
                              max_cost)
+        self._goal.depth_first = depth_first_raise(self.occupied)
         self._layers = [self._goal]
         if len(self.nodes):
             # a window reaching past the map on every side holds what a larger one would: the map, walled round

@@ -86,15 +86,17 @@ def launch_rounds(monkeypatch, serially: bool) -> None:
 @settings(max_examples=40, deadline=None,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
 @given(edit_sequences(), st.sampled_from([4, 8, 16]), st.booleans(), st.booleans(), st.sampled_from([0.0, 1e9]),
-       st.sampled_from([0, 2, 50]))
+       st.sampled_from([0, 2, 50]), st.booleans())
 def test_repair_equals_a_fresh_converge_bit_for_bit(monkeypatch, serially, restart_share, sequence, neighbourhood,
-                                                    corner_cutting, with_nodes, cut_share, race_lead):
+                                                    corner_cutting, with_nodes, cut_share, race_lead, depth_first):
     """... also when every repair that takes more than a slice restarts instead (share 0), and when some do, in
     the middle of a round (a tiny share); a mend's first look at what its edits cut off left out, or run to the
     end (every pocket it seals found and capped before the raise); its race from the source held back until the
-    mend gives up, as it is, or far ahead of the raise (it wins whenever it can). Every mend leaves its trail's
-    marks clear for the next, and its spare buffer and race's buckets as it found them."""
+    mend gives up, as it is, or far ahead of the raise (it wins whenever it can); its raise breadth or depth first
+    whatever the map. Every mend leaves its trail's marks clear for the next, and its spare buffer and race's
+    buckets as it found them."""
     launch_rounds(monkeypatch, serially)
+    monkeypatch.setattr(engine_module, "depth_first_raise", lambda occupied: depth_first)
     monkeypatch.setattr(engine_module, "RESTART_SHARE", restart_share)
     monkeypatch.setattr(engine_module, "CUT_SHARE", cut_share)  # a mend's look at the cut: none, or to the end
     monkeypatch.setattr(engine_module, "RACE_LEAD", race_lead)
@@ -1064,3 +1066,49 @@ def test_a_race_from_the_kept_cells_keeps_none_that_a_wall_opened_in_the_same_ed
     assert outcome.seeded and outcome.gave_up
     assert (engine.goal_distances() < before).any()  # the opening lowered some cells
     assert_equal_to_a_fresh_converge(engine, {})
+
+
+def test_a_raise_goes_depth_first_on_maps_of_corridors_a_cell_wide_and_breadth_first_elsewhere():
+    """``depth_first_raise``: a 1-cell maze, rings of corridors and a map with one corridor go depth first; open
+    ground, a 3-cell maze, rooms and a map with no free cell breadth first (hand-built and generated maps, not the
+    benchmark's)."""
+    corridor = np.ones((5, 30), bool)
+    corridor[2, 1:-1] = False
+    rings = np.ones((21, 21), bool)
+    for k in range(1, 10, 2):
+        rings[k, k:21 - k] = rings[20 - k, k:21 - k] = rings[k:21 - k, k] = rings[k:21 - k, 20 - k] = False
+    rooms = np.zeros((40, 40), bool)
+    rooms[::10], rooms[:, ::10] = True, True
+    rooms[5::10, ::10] = rooms[::10, 5::10] = False
+    for occupied, expected in [(maze(65, 1, seed=4), True), (rings, True), (corridor, True),
+                               (np.zeros((30, 30), bool), False), (maze(65, 3, seed=4), False), (rooms, False),
+                               (np.ones((4, 4), bool), False)]:
+        assert engine_module.depth_first_raise(occupied) == expected
+
+
+@pytest.mark.parametrize("weighted", [False, True])
+def test_a_depth_first_raise_mends_boxes_walls_and_noise_on_a_maze_to_a_fresh_converges_values(weighted):
+    """On a 1-cell maze (the raise depth first), with and without costs: boxes across the route, a wall, and cells
+    blocked and freed all over the map, each mended (or restarted by its race) and undone, bit for bit a fresh
+    converge's every time."""
+    occupied = maze(97, 1, seed=5)
+    cost = 1.0 + np.random.default_rng(5).integers(0, 4, occupied.shape).astype(np.float32) if weighted else None
+    engine = Engine(occupied, (1, 1), cost=cost)
+    assert engine._goal.depth_first
+    engine.converge()
+    rng = np.random.default_rng(6)
+    route = engine.trace(0, tuple(int(v) for v in farthest(engine)), occupied.size)
+    free, walls = np.argwhere(~occupied), np.argwhere(occupied[1:-1, 1:-1]) + 1
+    (r, c) = route[len(route) // 2]
+    box = np.array([(r + i, c + j) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    edits = [box, np.array(route[len(route) // 3:len(route) // 3 + 16]), free[rng.choice(len(free), 24, replace=False)]]
+    for cells in edits:
+        cells = cells[~occupied[cells[:, 0], cells[:, 1]] & (cells != (1, 1)).any(axis=1)]
+        opened = walls[rng.choice(len(walls), 24, replace=False)]
+        engine.set_cells(np.concatenate([cells, opened]), np.arange(len(cells) + len(opened)) < len(cells))
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, {"cost": engine.cost})
+        engine.set_cells(np.concatenate([cells, opened]), np.arange(len(cells) + len(opened)) >= len(cells))
+        engine.converge()
+        assert_equal_to_a_fresh_converge(engine, {"cost": engine.cost})
+        assert_no_marks_left(engine)
