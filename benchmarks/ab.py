@@ -8,11 +8,12 @@ archive``), and each version is loaded as a package of its own, so that both run
 Each pass times both, one after the other, the first swapped every pass: a from-scratch converge (``reset()``, then
 ``converge()``), and ``converge()`` after a 3 x 3 box, a wall of 16 cells on the route, a ring that seals the goal in
 a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze,
-serpentine, ring and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a pass of both takes
-milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the geometric mean. Both
-versions' fields are checked equal before the timing starts. With ``--costs``, every map carries a cost grid of that
-kind (``benchmarks.costs.costs``: nav2's inflation shape or uniform 1-10; 1 on obstacles), so that a change to the
-weighted layers' kernels is timed where robots meet it (results/ab-costs-KIND.json).
+serpentine, ring and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a
+pass of both takes milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the
+geometric mean. Both versions' fields are checked equal before the timing starts. With ``--costs``, every map
+carries a cost grid of that kind (``benchmarks.costs.costs``: nav2's inflation shape or uniform 1-10; 1 on
+obstacles), so that a change to the weighted layers' kernels is timed where robots meet it
+(results/ab-costs-KIND.json).
 
 Why one process, pass by pass: this VM's speed drifts between processes by 10-20 % for the same code, and within a
 process over seconds. In the twenty-first session an A/B in alternating processes credited a change with searches
