@@ -2314,8 +2314,8 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         a cell's loads far from the last one's, where depth first follows one corridor along memory (noise on the
         rings 0.75x, boxes across a 1-cell maze's route 0.88x; ARCHITECTURE §7). The order does not matter for the
         result: a cell looked at before its last route rose is a dependant of the cell that rises, and is looked at
-        again. Only a raised cell's dependants -
-        neighbours whose value is its old one plus their move to it - are looked at again. A cell that relaxes
+        again. Only a raised cell's dependants - neighbours whose value is its old one plus their move to it - are
+        looked at again. A cell that relaxes
         below its value (a cell freed or made cheaper by the same edits opened a move to it) may do so through a
         neighbour not raised yet, of which it is no dependant: it waits in row 1 of ``trail`` and is looked at again
         once the queue has run dry, as long as cells rose since it was last looked at (before, such a cell was kept,
