@@ -1442,11 +1442,12 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
 
     @ti.func
     def next_listing(links: ti.template(), heads, slot):
-        """The bucket of a weighted layer's ring after ``slot`` (-1: its first) that may list a cell, the next in a
-        marked block of a marked group (``marked_from``); the ring's size past its last."""
+        """The bucket of the ring after ``slot`` (-1: its first) that may list a cell - on a weighted layer the next
+        in a marked block of a marked group (``marked_from``), else the next -; the ring's size past its last."""
         slot += 1
-        if slot % _BLOCK == 0:
-            slot = marked_from(links, heads, slot // _BLOCK) * _BLOCK
+        if ti.static(weighted):
+            if slot % _BLOCK == 0:
+                slot = marked_from(links, heads, slot // _BLOCK) * _BLOCK
         return slot
 
     @ti.func
@@ -1460,17 +1461,15 @@ def _bucket_rules(weighted: bool) -> SimpleNamespace:
         """Empty every bucket of the ring (its heads start at ``heads``); on a weighted layer only the blocks marked,
         of the groups marked (``marked_from``: a ring of 4 million buckets at costs of 1e6, cleared by every search
         and mend, reads 1,024 group marks where it read 65,536 block marks)."""
-        if ti.static(weighted):
-            slot = next_listing(links, heads, -1)
-            while slot < links.shape[1] - heads:
-                links[0, heads + slot] = _UNLISTED
+        slot = next_listing(links, heads, -1)
+        while slot < links.shape[1] - heads:
+            links[0, heads + slot] = _UNLISTED
+            if ti.static(weighted):
                 links[1, mark_of(heads, slot // _BLOCK)] = _UNMARKED
-                slot = next_listing(links, heads, slot)
+            slot = next_listing(links, heads, slot)
+        if ti.static(weighted):
             for group in range(blocks_of(links, heads) // _BLOCK):
                 links[1, group_mark_of(links, heads, group)] = _UNMARKED
-        else:
-            for slot in range(links.shape[1] - heads):
-                links[0, heads + slot] = _UNLISTED
 
     @ti.func
     def link(links: ti.template(), heads, c, slot):
@@ -1663,14 +1662,10 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                         stamps[g, a, b] = -1
                         keys[g, a, b, _LOWER], keys[g, a, b, _LIFT] = _SETTLED, ti.math.inf
         heads = values.shape[1] * values.shape[2]
-        if ti.static(cell.weighted):  # the marked blocks alone: a ring of 4 million buckets read head by head took
-            slot = next_listing(links, heads, -1)  # 7 ms of every search and mend at costs of 1e6
-            while slot < links.shape[1] - heads:
-                stamp_listed(values, stamps, keys, links, tick, slot)
-                slot = next_listing(links, heads, slot)
-        else:
-            for slot in range(links.shape[1] - heads):
-                stamp_listed(values, stamps, keys, links, tick, slot)
+        slot = next_listing(links, heads, -1)  # weighted, the marked blocks alone: a ring of 4 million buckets read
+        while slot < links.shape[1] - heads:  # head by head took 7 ms of every search and mend at costs of 1e6
+            stamp_listed(values, stamps, keys, links, tick, slot)
+            slot = next_listing(links, heads, slot)
 
     @ti.func
     def stamp_listed(values: ti.template(), stamps: ti.template(), keys: ti.template(), links: ti.template(), tick,
@@ -2216,15 +2211,11 @@ def _race_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespace:
             values[0, i, j] = cap
             if links[1, c] != _UNLISTED:
                 unlink(links, heads, c)
-        if race[_FROM] == _SEEDED:
-            if ti.static(weighted):  # the marked blocks alone (``_search_rules``' ``hand_over``)
-                slot = next_listing(links, heads, -1)
-                while slot < links.shape[1] - heads:
-                    empty_bucket(links, heads, slot)
-                    slot = next_listing(links, heads, slot)
-            else:
-                for slot in range(links.shape[1] - heads):
-                    empty_bucket(links, heads, slot)
+        if race[_FROM] == _SEEDED:  # weighted, the marked blocks alone (``_search_rules``' ``hand_over``)
+            slot = next_listing(links, heads, -1)
+            while slot < links.shape[1] - heads:
+                empty_bucket(links, heads, slot)
+                slot = next_listing(links, heads, slot)
 
     @ti.func
     def hand_log(links: ti.template(), race, into: ti.template(), heads):
