@@ -11,7 +11,7 @@ a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each
 serpentine, ring and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a
 pass of both takes milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the
 geometric mean. Both versions' fields are checked equal before the timing starts. With ``--costs``, every map
-carries a cost grid of that kind (``benchmarks.costs.costs``: nav2's inflation shape or uniform 1-10; 1 on
+carries a cost grid of that kind (``benchmarks.costs.edited_costs``: nav2's inflation shape or uniform 1-10; 1 on
 obstacles), so that a change to the weighted layers' kernels is timed where robots meet it
 (results/ab-costs-KIND.json).
 
@@ -104,16 +104,6 @@ def one_pass(field, edits: dict) -> dict[str, float]:
     return seconds
 
 
-def cost_grid(occupied: np.ndarray, kind: str | None) -> np.ndarray | None:
-    """The cost grid of ``kind`` on the map (``benchmarks.costs.costs``), 1 on its obstacles as ``GridMap`` keeps
-    them; None for no kind (a binary map)."""
-    if kind is None:
-        return None
-    grid = costs.costs(occupied, kind)
-    grid[occupied] = 1.0
-    return grid
-
-
 def compare(versions: dict, name: str, occupied: np.ndarray, goal, pairs: int, cost: np.ndarray | None = None
             ) -> list[dict]:
     """Both versions on one map (with ``cost``, if given), ``pairs`` passes of each in turn (the first of each a
@@ -184,7 +174,8 @@ def main() -> None:
         versions = {"before": loaded("tdp_before", before_root), "after": loaded("tdp_after", after_root)}
         rows = []
         for name, occupied, goal in cases(QUICK_MAPS if args.quick else MAPS):
-            rows += compare(versions, name, occupied, goal, pairs, cost_grid(occupied, args.costs))
+            cost = None if args.costs is None else costs.edited_costs(occupied, args.costs)
+            rows += compare(versions, name, occupied, goal, pairs, cost)
             print(f"  {name}: " + ", ".join(f"{row['kind']} {row['ratio']:.2f}x" for row in rows[-len(KINDS):]),
                   flush=True)
     means = {kind: math.exp(statistics.fmean(math.log(row["ratio"]) for row in rows if row["kind"] == kind))

@@ -89,6 +89,14 @@ def costs(occupied: np.ndarray, kind: str) -> np.ndarray:
     return 1.0 + 9.0 * np.random.default_rng(occupied.size).random(occupied.shape)
 
 
+def edited_costs(occupied: np.ndarray, kind: str) -> np.ndarray:
+    """The cost grid of ``kind`` (``costs``) with 1 on the map's obstacles, as ``GridMap`` keeps them: a field
+    built on it and one edited into the same map agree on what a freed cell costs."""
+    cost = costs(occupied, kind)
+    cost[occupied] = 1.0
+    return cost
+
+
 def measure(name: str, occupied: np.ndarray, goal, kind: str, repeats: int) -> dict:
     binary = tdp.DistanceField(tdp.GridMap(occupied), goal)
     grid = tdp.GridMap(occupied, cost=costs(occupied, kind))
@@ -205,13 +213,11 @@ def edit_maps(quick: bool) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
 
 def edit_rows(quick: bool, repeats: int) -> list[dict]:
     """Every repair kind of ``benchmarks.convergence`` (``REPAIRS``) on each map of :func:`edit_maps` with each kind
-    of cost, against a fresh converge on the same cost grid (``measure_repair``). The cost grid holds 1 on the map's
-    obstacles: a cell freed takes what the grid says, and ``GridMap`` keeps 1 there."""
+    of cost, against a fresh converge on the same cost grid (``measure_repair``; ``edited_costs``)."""
     out = []
     for name, occupied, goal in edit_maps(quick):
         for kind in ("inflation", "random"):
-            cost = costs(occupied, kind)
-            cost[occupied] = 1.0
+            cost = edited_costs(occupied, kind)
             field = convergence.field_on(occupied, goal, cost=cost)
             field.converge()
             reference = field.distances()

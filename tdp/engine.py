@@ -2306,14 +2306,13 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         rings 0.75x, boxes across a 1-cell maze's route 0.88x; ARCHITECTURE §7). The order does not matter for the
         result: a cell looked at before its last route rose is a dependant of the cell that rises, and is looked at
         again. Only a raised cell's dependants - neighbours whose value is its old one plus their move to it - are
-        looked at again. A cell that relaxes
-        below its value (a cell freed or made cheaper by the same edits opened a move to it) may do so through a
-        neighbour not raised yet, of which it is no dependant: it waits in row 1 of ``trail`` and is looked at again
-        once the queue has run dry, as long as cells rose since it was last looked at (before, such a cell was kept,
-        and one whose route went through a cell now blocked kept the value that route gave, below every route it
-        has). Every cell left below the cap then has a real route (a neighbour at least a move lower, down to the
-        source), or relaxes below its value through one that has (the seeds lower it). The raised cells go in row 0
-        of ``trail``. Returns the raise's ints and whether the cell rose."""
+        looked at again. A cell that relaxes below its value (a cell freed or made cheaper by the same edits opened a
+        move to it) may do so through a neighbour not raised yet, of which it is no dependant: it waits in row 1 of
+        ``trail`` and is looked at again once the queue has run dry, as long as cells rose since it was last looked at
+        (before, such a cell was kept, and one whose route went through a cell now blocked kept the value that route
+        gave, below every route it has). Every cell left below the cap then has a real route (a neighbour at least a
+        move lower, down to the source), or relaxes below its value through one that has (the seeds lower it). The
+        raised cells go in row 0 of ``trail``. Returns the raise's ints and whether the cell rose."""
         head, tail, raised, waiting, rose = (rising[_NEXT], rising[_END], rising[_RAISED], rising[_DEFERRING],
                                              rising[_ROSE])
         c = 0
