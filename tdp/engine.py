@@ -811,6 +811,9 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
     lane = _lane_rules(lanes, weighted)
     broadcast, component, lanes_in, blocked_lanes = lane.broadcast, lane.component, lane.lanes_in, lane.blocked_lanes
     width = lane.width
+    leaving = tuple(enumerate(moves))  # (index, move): ``leaning``'s bits, those leaving by a corner apart
+    leaving_straight = tuple((k, m) for k, m in leaving if not stencil.leaves_by_corner(m))
+    leaving_cornered = tuple((k, m) for k, m in leaving if stencil.leaves_by_corner(m))
 
     @ti.func
     def penalty(pen: ti.template(), g, i, j, lane):
@@ -904,14 +907,42 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
     def leaning(src: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
         """``updated``'s value of scalar cell (i, j), and a bit per move (in ``moves``' order) whose target's value
         is the cell's plus the move's cost: the neighbours whose route may come through the cell, in the same loads
-        (the stencil is symmetric, and a move's cost back is the same sum, bit for bit)."""
-        best, value, leans = cap, src[0, i, j], 0
-        for k, m in ti.static(tuple(enumerate(moves))):
-            there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
-            cand = crossing(plus(there, cost), pen, 0, i, j, m.crossed)
-            best = ti.select(cand < best, cand, best)
-            leans |= ti.select(there == plus(value, cost), 1 << k, 0)
+        (the stencil is symmetric, and a move's cost back is the same sum, bit for bit). The crossed cells'
+        penalties come from the cell's 3 x 3 block (``around``), and the moves that leave by a corner of it are
+        looked at only where one of its corners is free (``corner_open``): a one-cell corridor's cells look at the
+        four straight moves alone, as its search does (``_search_rules``)."""
+        best, value, leans, block = cap, src[0, i, j], 0, around(pen, i, j)
+        for k, m in ti.static(leaving_straight):
+            best, leans = lean(src, pen, i, j, value, block, k, m, best, leans)
+        if corner_open(block):
+            for k, m in ti.static(leaving_cornered):
+                best, leans = lean(src, pen, i, j, value, block, k, m, best, leans)
         return pinned(best, pen, header, cap, 0, i, j), leans
+
+    @ti.func
+    def lean(src: ti.template(), pen: ti.template(), i, j, value, block, k: ti.template(), m: ti.template(), best,
+             leans):
+        """``leaning``'s move ``m`` (the ``k``-th) from scalar cell (i, j) of ``value``: ``best`` and ``leans``
+        with its candidate and its target's bit."""
+        there, cost = src[0, i + m.dr, j + m.dc], move_cost(pen, 0, i, j, m)
+        cand = plus(there, cost)
+        for c in ti.static(m.crossed):
+            cand += block[c[0] + 1, c[1] + 1]
+        return ti.select(cand < best, cand, best), leans | ti.select(there == plus(value, cost), 1 << k, 0)
+
+    @ti.func
+    def around(pen: ti.template(), i, j):
+        """The penalties (``penalty``) of the 3 x 3 block of scalar cells centred on padded cell (i, j), a 3 x 3
+        matrix: each move's crossed cells from (i, j), and its target but a knight's. Read once, before a search's
+        stores: read per move, each is read again after every store (the arrays might alias), 32 reads for 8 cells
+        on 16 neighbours."""
+        return ti.Matrix([[penalty(pen, 0, i + a, j + b, 0) for b in ti.static(range(-1, 2))]
+                          for a in ti.static(range(-1, 2))])
+
+    @ti.func
+    def corner_open(block):
+        """Whether a move by a corner of ``block`` (``around``) can be open: one of its four corners is free."""
+        return ti.min(ti.min(block[0, 0], block[0, 2]), ti.min(block[2, 0], block[2, 2])) == 0.0
 
     @ti.func
     def successor_move(values: ti.template(), pen: ti.template(), header: ti.template(), cap, g, lane, i, j):
@@ -943,8 +974,8 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
     return SimpleNamespace(**vars(lane), penalty=penalty, crossing=crossing, move_cost=move_cost, plus=plus,
                            bucket=bucket, beyond=beyond,
                            weighted=weighted, updated=updated,
-                           leaning=leaning, successor_move=successor_move, window_cell=window_cell, moves=moves,
-                           steps=steps)
+                           leaning=leaning, around=around, corner_open=corner_open, successor_move=successor_move,
+                           window_cell=window_cell, moves=moves, steps=steps)
 
 
 def _given(argument) -> bool:
@@ -1547,6 +1578,7 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
     (``around``), and tries the moves through a corner of it (``stencil.through_corner``) only when one of its four
     corners is free: a one-cell corridor's cells try the four straight moves alone."""
     moves, move_cost, penalty, plus, bucket_of = cell.moves, cell.move_cost, cell.penalty, cell.plus, cell.bucket
+    around, corner_open = cell.around, cell.corner_open
     buckets = _bucket_rules(cell.weighted)
     unlink, link, clear, take_first = buckets.unlink, buckets.link, buckets.clear, buckets.take_first
     next_listing = buckets.next_listing
@@ -1599,22 +1631,6 @@ def _search_rules(cell: SimpleNamespace, logged: bool = False) -> SimpleNamespac
                     listed = lower(values, pen, links, bucket, focus_row, focus_col, cap, i, j, value, block, m,
                                    listed)
         return ti.Vector([listed, taken])
-
-    @ti.func
-    def around(pen: ti.template(), i, j):
-        """The penalties (``penalty``) of the 3 x 3 block centred on padded cell (i, j), a 3 x 3 matrix: each move's
-        target and crossed cells from (i, j) but a knight's target. Read once, before the moves' stores: read per
-        move, each is read again after every store (the arrays might alias), 32 reads for 8 cells on 16 neighbours."""
-        return ti.Matrix([[penalty(pen, 0, i + a, j + b, 0) for b in ti.static(range(-1, 2))]
-                          for a in ti.static(range(-1, 2))])
-
-    @ti.func
-    def corner_open(block):
-        """Whether a move through a corner of ``block`` (``around``) can be open: one of its four corners is free."""
-        least = 0.0
-        if ti.static(cornered):
-            least = ti.min(ti.min(block[0, 0], block[0, 2]), ti.min(block[2, 0], block[2, 2]))
-        return least == 0.0
 
     @ti.func
     def lower(values: ti.template(), pen: ti.template(), links: ti.template(), bucket, focus_row, focus_col, cap,

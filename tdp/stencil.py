@@ -65,8 +65,19 @@ def _crossed_cells(dr: int, dc: int) -> tuple[tuple[int, int], ...]:
 def through_corner(move: Move) -> bool:
     """Whether ``move`` starts on, or crosses, a diagonal neighbour of the cell Z it ends on: when Z's four diagonal
     neighbours are all blocked, no such move reaches Z (a one-cell corridor's cells: the search skips them there)."""
-    touched = [(-move.dr, -move.dc)] + [(r - move.dr, c - move.dc) for r, c in move.crossed]
-    return any(abs(r) == 1 and abs(c) == 1 for r, c in touched)
+    return _touches_corner([(-move.dr, -move.dc)] + [(r - move.dr, c - move.dc) for r, c in move.crossed])
+
+
+def leaves_by_corner(move: Move) -> bool:
+    """Whether ``move`` ends on, or crosses, a diagonal neighbour of the cell V it starts from: when V's four diagonal
+    neighbours are all blocked, no such move leaves V (a one-cell corridor's cells: a mend's raise skips them
+    there)."""
+    return _touches_corner([(move.dr, move.dc), *move.crossed])
+
+
+def _touches_corner(offsets: list[tuple[int, int]]) -> bool:
+    """Whether any of ``offsets`` (from a cell) is one of its four diagonal neighbours."""
+    return any(abs(r) == 1 and abs(c) == 1 for r, c in offsets)
 
 
 def check_neighbourhood(neighbourhood: int) -> int:

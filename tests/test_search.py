@@ -64,6 +64,20 @@ def test_the_moves_through_a_corner_are_the_moves_a_cell_with_its_corners_blocke
         assert reaches != stencil.through_corner(m), m
 
 
+@pytest.mark.parametrize("neighbourhood, corner_cutting", [(4, False), (8, False), (8, True), (16, False), (16, True)])
+def test_the_moves_leaving_by_a_corner_are_the_moves_a_cell_with_its_corners_blocked_cannot_leave_by(neighbourhood,
+                                                                                                    corner_cutting):
+    """A mend's raise skips the moves ``leaves_by_corner`` names out of a cell whose four diagonal neighbours are
+    blocked (``leaning``): each is blocked there, and every other move open with the rest of its block free."""
+    occupied = np.zeros((5, 5), bool)
+    occupied[1::2, 1::2] = True  # the corners of the centre
+    centre = (2, 2)
+    for m in stencil.moves(neighbourhood, corner_cutting):
+        leaves = centre[0] + m.dr, centre[1] + m.dc
+        open_ = leaves in [cell for cell, _ in stencil.legal_moves(occupied, centre, (m,))]
+        assert open_ != stencil.leaves_by_corner(m), m
+
+
 @pytest.mark.parametrize("occupied, goal, focus", [
     (np.zeros((100, 100), bool), (5, 5), (60, 60)),
     (maze(63, 1, seed=4), (1, 1), (61, 61)),
