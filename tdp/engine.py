@@ -933,9 +933,9 @@ def _cell_rules(lanes: int, moves: tuple, weighted: bool, absorbing: bool = Fals
     @ti.func
     def around(pen: ti.template(), i, j):
         """The penalties (``penalty``) of the 3 x 3 block of scalar cells centred on padded cell (i, j), a 3 x 3
-        matrix: each move's crossed cells from (i, j), and its target but a knight's. Read once, before a search's
-        stores: read per move, each is read again after every store (the arrays might alias), 32 reads for 8 cells
-        on 16 neighbours."""
+        matrix: the cells a move to or from (i, j) crosses, and its other end but a knight's. Read once, before a
+        search's stores: read per move, each is read again after every store (the arrays might alias), 32 reads for
+        8 cells on 16 neighbours."""
         return ti.Matrix([[penalty(pen, 0, i + a, j + b, 0) for b in ti.static(range(-1, 2))]
                           for a in ti.static(range(-1, 2))])
 
@@ -2262,7 +2262,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
     ``raise_end`` (the cells the edits cut off rise to the cap; its ints are a vector, ``_NEXT`` ...) and
     ``seed_cut`` (their rim and the edited cells take their relaxations, the seeds of :func:`_lower_rules`'
     search)."""
-    moves, blocked, updated, leaning = cell.moves, cell.blocked, cell.updated, cell.leaning
+    moves, blocked, leaning = cell.moves, cell.blocked, cell.leaning
 
     @ti.func
     def ring_end(values: ti.template(), links: ti.template()):
@@ -2376,6 +2376,13 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
             head = after(values, links, head)
 
     @ti.func
+    def relaxation(values: ti.template(), pen: ti.template(), header: ti.template(), cap, i, j):
+        """``updated``'s value of scalar cell (i, j) in ``leaning``'s loads: a one-cell corridor's cell looks at 4
+        of 16 moves."""
+        value, _ = leaning(values, pen, header, cap, i, j)
+        return value
+
+    @ti.func
     def seed_cut(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
                  cells: ti.template(), penalties: ti.template(), raised, cap):
         """The seeds of a repair's lowering: each raised cell (``trail``'s first ``raised``) and each cell within
@@ -2386,7 +2393,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
         for k in range(raised):
             c = trail[0, k]
             i, j = _cell_at(c, values.shape[2])
-            value = updated(values, pen, header, cap, 0, i, j)
+            value = relaxation(values, pen, header, cap, i, j)
             if value < values[0, i, j]:
                 values[0, i, j] = value
                 trail[0, seeds] = c
@@ -2397,7 +2404,7 @@ def _raise_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 value = cap
                 # the padding is blocked too: its cells' neighbours lie outside the arrays
                 if penalties[k] <= MAX_COST and not blocked(pen[0, i, j]):
-                    value = updated(values, pen, header, cap, 0, i, j)
+                    value = relaxation(values, pen, header, cap, i, j)
                 if value < values[0, i, j]:
                     values[0, i, j] = value
                     trail[0, seeds] = i * values.shape[2] + j
