@@ -43,6 +43,14 @@ def path(value, name: str, kind: str = "file") -> Path:
     return Path(value)
 
 
+def existing_file(path: Path, what: str) -> Path:
+    """``path`` if it leads to a file; else a FileNotFoundError saying that the ``what`` (e.g. "map file") was not
+    found there, and that it is a folder where it is one."""
+    if not path.is_file():
+        raise FileNotFoundError(f"{what} not found: {path}" + (" is a folder" if path.is_dir() else ""))
+    return path
+
+
 def text(value, name: str, default: str) -> str:
     """A name or a description read from a file: text, or a finite number YAML read from unquoted digits, as text;
     ``default`` where it is absent or empty."""

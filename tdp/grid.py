@@ -268,9 +268,7 @@ def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: floa
 
 def _load(path: Path, unknown_is_free: bool, threshold: float, trinary_costmap: bool) -> GridMap:
     """The map file at ``path`` by its suffix (see :func:`load_map`)."""
-    suffix = path.suffix.lower()
-    if not path.is_file():
-        raise FileNotFoundError(f"map file not found: {path}")
+    suffix = checks.existing_file(path, "map file").suffix.lower()
     if suffix in (".yaml", ".yml"):
         return _load_ros(path, unknown_is_free, trinary_costmap)
     if not trinary_costmap:
@@ -340,9 +338,7 @@ def load_scenarios(path: str | Path, grid: GridMap | None = None) -> list[Proble
     Tolerates CRLF, a missing final newline, and blank lines with any text after them (reading stops at the first
     blank line). With ``grid``, checks that each problem's map size matches and its cells are free.
     """
-    path = checks.path(path, "path")
-    if not path.is_file():
-        raise FileNotFoundError(f"scenario file not found: {path}")
+    path = checks.existing_file(checks.path(path, "path"), "scenario file")
     lines = _read_lines(path)
     if not lines or not lines[0].startswith("version"):
         raise ValueError(f"{path}, line 1: expected a 'version ...' header")

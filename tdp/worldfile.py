@@ -103,9 +103,7 @@ class _Reader:
 
 def load_world(path: str | Path) -> Scenario:
     """Read a world file (see the module's documentation) into a Scenario."""
-    path = checks.path(path, "path")
-    if not path.is_file():
-        raise FileNotFoundError(f"world file not found: {path}")
+    path = checks.existing_file(checks.path(path, "path"), "world file")
     try:
         data = yaml.safe_load(path.read_text())
     except (yaml.YAMLError, UnicodeDecodeError) as error:

@@ -82,6 +82,16 @@ def test_plan_on_an_image_too_large_is_one_error_line(tmp_path):
     assert done.returncode == 2 and done.stderr.startswith("error:") and "Traceback" not in done.stderr
 
 
+@pytest.mark.parametrize("load, what", [(tdp.load_map, "map file"), (tdp.load_scenarios, "scenario file"),
+                                         (tdp.load_world, "world file")])
+def test_a_missing_file_or_a_folder_is_named_as_such(tmp_path, load, what):
+    with pytest.raises(FileNotFoundError, match=f"^{what} not found: .*nothing.map$"):
+        load(tmp_path / "nothing.map")
+    (tmp_path / "maps.map").mkdir()
+    with pytest.raises(FileNotFoundError, match=f"^{what} not found: .*maps.map is a folder$"):
+        load(tmp_path / "maps.map")
+
+
 @pytest.mark.parametrize("length", ["nan", "-7", "inf"])
 def test_scen_optimal_length_must_be_a_finite_non_negative_number(tmp_path, length):
     path = tmp_path / "s.scen"
