@@ -5,6 +5,7 @@ import math
 import os
 import sys
 import time
+import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -236,8 +237,16 @@ class _Run:
         return math.hypot(gx - x, gy - y) <= self.sim.goal_tolerance_m
 
 
+def margin_floor_m(cell_m: float) -> float:
+    """The least ``SimConfig.margin_m`` (metres) that covers a grid of ``cell_m``-metre cells: obstacles grow centre
+    to centre, so a free cell's centre may lie up to half a cell's diagonal nearer an obstacle's edge than the growth
+    says (0.071 m on 0.1 m cells)."""
+    return cell_m * math.sqrt(2) / 2
+
+
 def _check_episode(scenario, config, sim, gui, frames) -> None:
-    """:func:`run_episode`'s arguments are of their kinds, else a ValueError naming the first that is not."""
+    """:func:`run_episode`'s arguments are of their kinds, else a ValueError naming the first that is not; a
+    UserWarning where the margin leaves the robot less room than the grid promises (``margin_floor_m``)."""
     for value, kind, name, called in ((scenario, tdp.Scenario, "scenario", "tdp.Scenario"),
                                       (config, tdp.NavigatorConfig, "config", "tdp.NavigatorConfig"),
                                       (sim, SimConfig, "sim", "sim.episode.SimConfig")):
@@ -247,6 +256,13 @@ def _check_episode(scenario, config, sim, gui, frames) -> None:
     if frames is not None and not isinstance(frames, list):
         raise ValueError(f"frames must be a list (the pictures are appended to it) or None, got "
                          f"{type(frames).__name__}")
+    floor_m = margin_floor_m(scenario.grid.resolution)
+    if sim.margin_m < floor_m:
+        enough_m = math.ceil(floor_m * 1000) / 1000
+        warnings.warn(f"margin_m {sim.margin_m:g} is less than half a cell's diagonal ({floor_m:.3g} m on this map's "
+                      f"{scenario.grid.resolution:g} m cells): the planners may route the robot through gaps it does "
+                      f"not fit, and it may touch obstacles; give SimConfig(margin_m={enough_m:g}) or more, or a "
+                      f"finer map", UserWarning, stacklevel=3)
 
 
 class TopCamera:
@@ -280,6 +296,10 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     Raises:
         ValueError: an argument of the wrong kind; no room for the robot at the start or the goal; a budget longer
             than a tick; ``gui`` without a display.
+
+    Warns:
+        UserWarning: ``sim.margin_m`` below half a cell's diagonal (``margin_floor_m``), where the robot may not fit
+            the gaps the planners route it through.
     """
     _check_episode(scenario, config, sim, gui, frames)
     client = connect(gui)
