@@ -27,6 +27,18 @@ from .stencil import RobotMoves
 FIRST_SWEEPS = 64
 
 
+def holds_goal(budgeted: bool, settled: bool, waited_ticks: int, since_ticks: int) -> bool:
+    """Whether a planner holds a target's move back, the goal layer kept at the goal it last took: with a budget,
+    while the repair that move started has cost ticks (``waited_ticks``) and not yet reached the robot (not
+    ``settled``) - a new move would throw that work away, and a target that moved more often than a repair took would
+    keep the robot waiting for ever -, and once it has, for as many ticks again (``since_ticks``, counted from then),
+    so that the robot drives at least as long as it waited. Unbudgeted, or before a tick was spent on the last move,
+    never: every move is taken at once."""
+    if not budgeted or waited_ticks == 0:
+        return False
+    return not settled or since_ticks < waited_ticks
+
+
 class ExactPlanner:
     """The planner of ``NavigatorConfig(planner="exact")``: optimal on the map as it is at every tick.
 
@@ -41,7 +53,9 @@ class ExactPlanner:
     repair got (mode ``behind``): the successors only make legal moves down the values, never into an obstacle;
     where the repair has been, every finite value is the length of a real route on the current map, so the robot
     heads along a real route, perhaps not the shortest; values it has not reached (lifts still waiting) may lead
-    towards a passage that has closed. The repair catches up at a later tick and the route is exact again.
+    towards a passage that has closed. The repair catches up at a later tick and the route is exact again. A goal
+    move restarts the layer, so with a budget a move may wait (:meth:`set_goal`, ``holds_goal``): the robot then
+    drives towards where the target was (mode ``behind``).
 
     Raises:
         ValueError: ``grid`` is not a GridMap, ``config`` not a NavigatorConfig, start or goal not a free cell.
@@ -73,10 +87,15 @@ class ExactPlanner:
         # The cells whose route to the goal the last repair left exact (the robot's cell and its next step), or
         # none since an edit or a goal move: a tick that finds the robot on one of them has nothing to repair.
         self._exact_from: tuple[tuple[int, int], ...] = ()
+        # The target's cell as set_goal last gave it (the goal layer's may lag: ``holds_goal``), the ticks the repair
+        # after the goal layer's last move has taken, whether it reached the robot, and the ticks since it did.
+        self._target = self.engine.goal
+        self._waited_ticks, self._settled, self._since_ticks = 0, False, 0
 
     @property
     def goal(self) -> tuple[int, int]:
-        return self.engine.goal
+        """The target's cell (the goal layer's goal may lag behind it with a budget: :meth:`set_goal`)."""
+        return self._target
 
     def setup(self) -> int:
         """Compile the engine's kernels and converge the goal layer focused on the start, as D* Lite's first search
@@ -115,9 +134,21 @@ class ExactPlanner:
             self._exact_from = ()
 
     def set_goal(self, goal: tuple[int, int]) -> None:
-        """Move the target; it may stand on an obstacle (then no cell reaches it until it leaves)."""
-        self.engine.set_goal(checks.cell(goal, self.grid.shape, "goal"))
-        self._exact_from = ()
+        """Move the target; it may stand on an obstacle (then no cell reaches it until it leaves). With a budget, a
+        move that arrives while the repair after the last one is still on its way to the robot waits, and so does one
+        that arrives before the robot has driven as many ticks as that repair took (``holds_goal``): the robot drives
+        towards where the target was (mode ``behind``) and the goal layer takes the target's latest cell then, or
+        once the robot reaches the goal it has."""
+        self._target = checks.cell(goal, self.grid.shape, "goal")
+        if not holds_goal(self.config.budget_ms is not None, self._settled, self._waited_ticks, self._since_ticks):
+            self._take_target()
+
+    def _take_target(self) -> None:
+        """Move the goal layer's goal to the target's cell, if it is elsewhere."""
+        if self._target != self.engine.goal:
+            self.engine.set_goal(self._target)
+            self._exact_from = ()
+            self._waited_ticks, self._settled, self._since_ticks = 0, False, 0
 
     def move_robot(self, cell: tuple[int, int]) -> None:
         """The robot is now at ``cell`` (inside the map; an obstacle may have driven onto it)."""
@@ -127,17 +158,32 @@ class ExactPlanner:
         """Repair (focused on the robot; within the budget, if any), then the successor or the way out of an
         obstacle. Mode ``exact``, ``behind`` (the budget ran out first) or ``wait`` (no move)."""
         began = time.perf_counter()
+        if self.robot == self.engine.goal or not holds_goal(self.config.budget_ms is not None, self._settled,
+                                                            self._waited_ticks, self._since_ticks):
+            self._take_target()
         exact = self.robot in self._exact_from or self._repair(began)
+        self._count_tick(exact)
         repaired = time.perf_counter()
-        step = None if self.robot == self.goal else self.engine.focus_successor(self.robot)
+        step = None if self.robot == self.engine.goal else self.engine.focus_successor(self.robot)
         self._exact_from = (self.robot,) + ((step,) if step else ()) if exact else ()
         if self.engine.occupied[self.robot]:
             step = self.moves.escape(self.engine.occupied, self.robot, self._goal_values) or step
-        moving = step is not None or self.robot == self.goal
-        mode = (Mode.EXACT if exact else Mode.BEHIND) if moving else Mode.WAIT
+        moving = step is not None or self.robot == self.engine.goal
+        on_target = exact and self._target == self.engine.goal
+        mode = (Mode.EXACT if on_target else Mode.BEHIND) if moving else Mode.WAIT
         result = TickResult(mode=mode, next_cell=step)
         result.timings = {"converge": repaired - began, "search": time.perf_counter() - repaired}
         return result
+
+    def _count_tick(self, exact: bool) -> None:
+        """Count a tick for ``holds_goal``: one the repair after the last goal move took, or one since it reached the
+        robot."""
+        if self._settled:
+            self._since_ticks += 1
+        elif exact:
+            self._settled = True
+        else:
+            self._waited_ticks += 1
 
     def _repair(self, began: float) -> bool:
         """Converge focused on the robot, in one go or, with a budget, in slices of sweeps until it is through
@@ -182,7 +228,7 @@ class ExactPlanner:
     def route(self, steps: int) -> list[tuple[int, int]]:
         """Up to ``steps`` cells the robot would follow from its cell now (the goal layer's successors); empty at
         the goal or where the layer gives no move."""
-        if self.robot == self.goal:
+        if self.robot == self.engine.goal:
             return []
         return self.engine.trace(0, self.robot, steps)
 

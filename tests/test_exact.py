@@ -8,6 +8,7 @@ from hypothesis import strategies as st
 import tdp
 from benchmarks.reference_planner import FullConverge
 from tdp.contract import Mode
+from tdp.exact import holds_goal
 from tdp.random_worlds import FAMILIES, boxes_on_map, make_world
 from tdp.simulate import run_planner, start_grid
 
@@ -67,6 +68,45 @@ def test_a_tight_budget_still_reaches_without_collision_and_catches_up(family):
     record = run_planner(scenario, planner, config, scenario.tick_limit)
     assert record["reached"] and record["collisions"] == 0
     assert Mode.EXACT in record["modes"]
+
+
+@pytest.mark.parametrize("budgeted, settled, waited, since, holds", [
+    (False, False, 5, 0, False),  # unbudgeted: every move at once
+    (True, False, 0, 0, False),  # no tick spent on the last move yet: the newer one replaces it
+    (True, False, 3, 0, True),  # its repair has taken 3 ticks and not reached the robot
+    (True, True, 3, 2, True),  # it has, 2 ticks ago: the robot drives one more
+    (True, True, 3, 3, False),  # ... and has driven as long as it waited
+])
+def test_holds_goal(budgeted, settled, waited, since, holds):
+    assert holds_goal(budgeted, settled, waited, since) is holds
+
+
+def test_a_budgeted_planner_chases_a_target_that_moves_faster_than_its_repair():
+    """Each goal move restarted the goal layer, so a target that moved again before the repair reached the robot
+    threw the work away: on the moving-target world of seed 7102 (140 x 140, the target walking for 793 ticks) the
+    robot with budget_ms=0.1 waited 795 of 840 ticks and never arrived. A move now waits for the repair in progress
+    and, after it, as many ticks as it took (``holds_goal``). Here the budget is shorter than any slice, so that each
+    tick repairs one slice of FIRST_SWEEPS sweeps whatever the machine's speed, and the target walks round a square
+    one cell every other tick for the whole run: the robot starts 100 cells away and catches it."""
+    side = 96
+    grid = tdp.GridMap(np.zeros((side, side), bool))
+    loop = ([(70, c) for c in range(70, 90)] + [(r, 90) for r in range(70, 90)] + [(90, c) for c in range(90, 70, -1)]
+            + [(r, 70) for r in range(90, 70, -1)])
+    planner = tdp.ExactPlanner(grid, (2, 2), loop[0], tdp.NavigatorConfig(planner="exact", budget_ms=1e-6))
+    planner.setup()
+    robot, modes, nearest = (2, 2), [], []
+    for tick in range(400):
+        target = loop[(tick // 2) % len(loop)]
+        planner.set_goal(target)
+        assert planner.goal == target
+        result = planner.tick()
+        modes.append(result.mode)
+        if result.next_cell is not None:
+            robot = result.next_cell
+            planner.move_robot(robot)
+        nearest.append(max(abs(robot[0] - target[0]), abs(robot[1] - target[1])))
+    assert min(nearest[:200]) <= 3 and max(nearest[-100:]) <= 3
+    assert Mode.BEHIND in modes and Mode.EXACT in modes
 
 
 def test_a_goal_move_into_a_pocket_and_out():
