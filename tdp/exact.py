@@ -140,8 +140,12 @@ class ExactPlanner:
         towards where the target was (mode ``behind``) and the goal layer takes the target's latest cell then, or
         once the robot reaches the goal it has."""
         self._target = checks.cell(goal, self.grid.shape, "goal")
-        if not holds_goal(self.config.budget_ms is not None, self._settled, self._waited_ticks, self._since_ticks):
+        if not self._holding():
             self._take_target()
+
+    def _holding(self) -> bool:
+        """Whether a move of the target waits now (``holds_goal``)."""
+        return holds_goal(self.config.budget_ms is not None, self._settled, self._waited_ticks, self._since_ticks)
 
     def _take_target(self) -> None:
         """Move the goal layer's goal to the target's cell, if it is elsewhere."""
@@ -156,10 +160,10 @@ class ExactPlanner:
 
     def tick(self) -> TickResult:
         """Repair (focused on the robot; within the budget, if any), then the successor or the way out of an
-        obstacle. Mode ``exact``, ``behind`` (the budget ran out first) or ``wait`` (no move)."""
+        obstacle. Mode ``exact``, ``behind`` (the budget ran out first, or the target's last move waits) or ``wait``
+        (no move)."""
         began = time.perf_counter()
-        if self.robot == self.engine.goal or not holds_goal(self.config.budget_ms is not None, self._settled,
-                                                            self._waited_ticks, self._since_ticks):
+        if self.robot == self.engine.goal or not self._holding():
             self._take_target()
         exact = self.robot in self._exact_from or self._repair(began)
         self._count_tick(exact)
