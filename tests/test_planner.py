@@ -431,7 +431,8 @@ def test_an_escapes_depths_are_scipys_dijkstra_from_the_free_cells(seed, stencil
     """The depth of each covered cell near the robot (``escape_move`` walks no deeper): the shortest walk through
     covered cells that are not walls, within the window, to a free cell, its moves clear of walls - against scipy's
     Dijkstra on the reference graph of the cells that are not walls, from every free cell at once. The depths were a
-    Python Dijkstra (15 ms a tick under a box in a corridor world); they are now numpy relaxations of the window."""
+    Python Dijkstra (up to 34 ms a tick under a box in a corridor world); they are now numpy relaxations of the
+    window."""
     rng = np.random.default_rng(seed)
     rows, cols = int(rng.integers(1, 30)), int(rng.integers(1, 30))
     occupied = rng.random((rows, cols)) < rng.uniform(0.2, 0.95)
