@@ -7,11 +7,12 @@ through besides V and Z; with the default rule (no corner cutting) they must be 
 """
 from __future__ import annotations
 
-import heapq
 import math
 from typing import Callable, NamedTuple
 
 import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import dijkstra
 
 NEIGHBOURHOODS = (4, 8, 16)
 
@@ -120,31 +121,22 @@ def escape_move(occupied: np.ndarray, cell: tuple[int, int], allowed: tuple[Move
     an obstacle with no way out within reach, may walk through any occupied cell that is not a wall. None when no
     such free cell has a finite distance."""
     walls = np.zeros_like(occupied) if walls is None else walls
-    depth = _depths(occupied, walls, cell, allowed, math.ceil(max_length))
-    reached = {cell: 0.0}
-    heap = [(0.0, cell, cell)]
-    exits: dict[tuple[int, int], tuple[float, tuple[int, int]]] = {}
-    while heap:
-        length, here, first = heapq.heappop(heap)
-        if length > reached[here]:
-            continue
-        for there, m in _moves_clear_of(walls, here, allowed):
-            walked, step = length + m.cost, there if here == cell else first
-            if walked > max_length:
-                continue
-            if not occupied[there]:
-                if walked < exits.get(there, (math.inf,))[0]:
-                    exits[there] = (walked, step)
-            elif walked < reached.get(there, math.inf) and all(
-                    depth.get(c, math.inf) <= depth.get(here, math.inf) for c in _passed(here, m) if occupied[c]):
-                reached[there] = walked
-                heapq.heappush(heap, (walked, there, step))
-    if not exits:
+    window = _Window.around(occupied, walls, cell, math.ceil(max_length))
+    legs = _Legs.of(window, allowed)
+    start = window.flat(cell)
+    walked, before = dijkstra(_walks(window, legs, start), indices=start, return_predecessors=True)
+    exits = np.flatnonzero(~window.covered & (walked <= max_length))
+    exits = exits[exits != start]
+    if not len(exits):
         return None
-    cells = list(exits)
-    totals = [exits[c][0] + float(d) for c, d in zip(cells, distances_at(cells))]
+    totals = walked[exits] + np.asarray(distances_at(window.cells(exits)), np.float64)
     best = int(np.argmin(totals))
-    return exits[cells[best]][1] if math.isfinite(totals[best]) else None
+    if not math.isfinite(totals[best]):
+        return None
+    step = exits[best]
+    while before[step] != start:
+        step = before[step]
+    return window.cells(np.array([step]))[0]
 
 
 class RobotMoves:
@@ -193,40 +185,94 @@ def _passed(here: tuple[int, int], m: Move) -> list[tuple[int, int]]:
     return [(here[0] + dr, here[1] + dc) for dr, dc in ((m.dr, m.dc),) + m.crossed]
 
 
-def _depths(occupied: np.ndarray, walls: np.ndarray, cell: tuple[int, int], allowed: tuple[Move, ...],
-            radius: int) -> dict[tuple[int, int], float]:
-    """For each occupied cell that is not a wall within ``radius`` cells of ``cell`` (rows and columns), the length
-    of the shortest walk of ``allowed`` moves through such cells to a free cell (moves are symmetric: a search
-    from all the free cells at once), on the window's arrays: the moves clear of walls from every cell at once, then
-    relaxed until nothing falls (a Python Dijkstra over the cells took up to 34 ms a tick under a box in a corridor
-    world)."""
-    rows, cols = occupied.shape
-    r0, c0 = max(0, cell[0] - radius), max(0, cell[1] - radius)
-    r1, c1 = min(rows, cell[0] + radius + 1), min(cols, cell[1] + radius + 1)
-    walled, covered = _around(walls, r0, r1, c0, c1), _around(occupied, r0, r1, c0, c1)
-    shape = (r1 - r0, c1 - c0)
+class _Window(NamedTuple):
+    """The cells within a radius of a cell (rows and columns) and REACH cells round them, flattened row by row:
+    ``walled`` and ``covered`` (True off the map) from the walls and occupied maps, ``inner`` the cells within the
+    radius; the flat index of map cell (r, c) is (r - top) x width + (c - left)."""
 
-    def shifted(grid: np.ndarray, dr: int, dc: int) -> np.ndarray:
-        return grid[REACH + dr:REACH + dr + shape[0], REACH + dc:REACH + dc + shape[1]]
+    walled: np.ndarray
+    covered: np.ndarray
+    inner: np.ndarray
+    top: int
+    left: int
+    width: int
 
-    inside = shifted(covered, 0, 0) & ~shifted(walled, 0, 0)
-    depth = np.full(shape, math.inf)
-    steps = []  # (move, where it is clear of walls from)
-    for m in allowed:
-        clear = ~shifted(walled, m.dr, m.dc)
-        for dr, dc in m.crossed:
-            clear &= ~shifted(walled, dr, dc)
-        out = inside & clear & ~shifted(covered, m.dr, m.dc)
-        depth[out] = np.minimum(depth[out], m.cost)
-        steps.append((m, inside & clear))
-    offered = np.full((shape[0] + 2 * REACH, shape[1] + 2 * REACH), math.inf)
-    while True:
-        before = depth.copy()
-        for m, clear in steps:  # a cell inside takes what the cell a move behind it offers
-            offered[REACH:-REACH, REACH:-REACH] = np.where(clear, depth + m.cost, math.inf)
-            np.minimum(depth, np.where(inside, shifted(offered, -m.dr, -m.dc), math.inf), out=depth)
-        if np.array_equal(before, depth):
-            return {(int(r) + r0, int(c) + c0): float(depth[r, c]) for r, c in np.argwhere(np.isfinite(depth))}
+    @classmethod
+    def around(cls, occupied: np.ndarray, walls: np.ndarray, cell: tuple[int, int], radius: int) -> "_Window":
+        rows, cols = occupied.shape
+        r0, c0 = max(0, cell[0] - radius), max(0, cell[1] - radius)
+        r1, c1 = min(rows, cell[0] + radius + 1), min(cols, cell[1] + radius + 1)
+        inner = np.zeros((r1 - r0 + 2 * REACH, c1 - c0 + 2 * REACH), bool)
+        inner[REACH:-REACH, REACH:-REACH] = True
+        return cls(_around(walls, r0, r1, c0, c1).ravel(), _around(occupied, r0, r1, c0, c1).ravel(), inner.ravel(),
+                   r0 - REACH, c0 - REACH, inner.shape[1])
+
+    def flat(self, cell: tuple[int, int]) -> int:
+        """The flat index of map cell ``cell``."""
+        return (cell[0] - self.top) * self.width + cell[1] - self.left
+
+    def cells(self, flat: np.ndarray) -> list[tuple[int, int]]:
+        """The map cells at the flat indices ``flat``."""
+        rows, cols = np.divmod(flat, self.width)
+        return list(zip((rows + self.top).tolist(), (cols + self.left).tolist()))
+
+
+class _Legs(NamedTuple):
+    """The ``allowed`` moves as flat offsets in a :class:`_Window`: where each ends (``ahead``), the cells it
+    crosses (``crossed``, two a move, padded with its end) and its length (``costs``, a column)."""
+
+    ahead: np.ndarray
+    crossed: np.ndarray
+    costs: np.ndarray
+
+    @classmethod
+    def of(cls, window: _Window, allowed: tuple[Move, ...]) -> "_Legs":
+        ahead = np.array([m.dr * window.width + m.dc for m in allowed])
+        crossed = [[dr * window.width + dc for dr, dc in m.crossed] for m in allowed]
+        crossed = np.array([c + [a] * (2 - len(c)) for c, a in zip(crossed, ahead)])
+        return cls(ahead[:, None], crossed, np.array([m.cost for m in allowed])[:, None])
+
+    def clear(self, window: _Window, cells: np.ndarray) -> np.ndarray:
+        """(moves, cells): whether each move from each of the flat ``cells`` enters and crosses no wall."""
+        crossed = self.crossed[:, :, None] + cells
+        return ~(window.walled[self.ahead + cells] | window.walled[crossed[:, 0]] | window.walled[crossed[:, 1]])
+
+
+def _depths(window: _Window, legs: _Legs) -> np.ndarray:
+    """For each occupied cell of the ``window``'s inner cells that is not a wall, the length of the shortest walk of
+    the ``legs``' moves through such cells to a free cell (inf elsewhere, flat): scipy's Dijkstra on their graph,
+    from a source one move from each cell with a move out (moves are symmetric: a search from all the free cells at
+    once), its edges gathered for all the cells at once."""
+    at = np.flatnonzero(window.inner & window.covered & ~window.walled)  # the cells a walk goes through
+    index = np.full(len(window.covered), -1)
+    index[at] = np.arange(len(at))
+    ahead, clear = legs.ahead + at, legs.clear(window, at)
+    out = np.where(clear & ~window.covered[ahead], legs.costs, math.inf).min(axis=0, initial=math.inf)
+    walk = clear & (index[ahead] >= 0)  # edges: from the cell a move ends on to the one it leaves
+    leaving, source = np.flatnonzero(np.isfinite(out)), len(at)
+    tails = np.concatenate([index[ahead[walk]], np.full(len(leaving), source)])
+    heads = np.concatenate([np.nonzero(walk)[1], leaving])
+    lengths = np.concatenate([np.broadcast_to(legs.costs, walk.shape)[walk], out[leaving]])
+    graph = csr_matrix((lengths, (tails, heads)), shape=(source + 1, source + 1))
+    depth = np.full(len(window.covered), math.inf)
+    depth[at] = dijkstra(graph, indices=source)[:source]
+    return depth
+
+
+def _walks(window: _Window, legs: _Legs, start: int) -> csr_matrix:
+    """The graph of :func:`escape_move`'s walks in the ``window``: each move of the ``legs`` from ``start`` or from
+    an occupied cell that is not a wall, clear of walls, into a free cell or into occupied cells no deeper than the
+    one it leaves (:func:`_depths`)."""
+    depth = _depths(window, legs)
+    at = np.union1d(np.flatnonzero(window.inner & window.covered & ~window.walled), [start])
+    ahead, crossed = legs.ahead + at, legs.crossed[:, :, None] + at
+    shallow = np.ones(ahead.shape, bool)
+    for passed in (ahead, crossed[:, 0], crossed[:, 1]):
+        shallow &= ~window.covered[passed] | (depth[passed] <= depth[at])
+    move = legs.clear(window, at) & (~window.covered[ahead] | shallow)
+    lengths = np.broadcast_to(legs.costs, move.shape)[move]
+    size = len(window.covered)
+    return csr_matrix((lengths, (np.broadcast_to(at, move.shape)[move], ahead[move])), shape=(size, size))
 
 
 def _around(grid: np.ndarray, r0: int, r1: int, c0: int, c1: int) -> np.ndarray:

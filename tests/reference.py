@@ -4,6 +4,7 @@ Deliberately shares no code with tdp: the offsets, weights and corner rule are w
 """
 from __future__ import annotations
 
+import heapq
 import math
 
 import numpy as np
@@ -76,3 +77,56 @@ def assert_distances_match(ours: np.ndarray, expected: np.ndarray, rtol: float) 
     np.testing.assert_array_equal(np.isinf(ours), np.isinf(expected))
     finite = np.isfinite(expected)
     np.testing.assert_allclose(ours[finite], expected[finite], rtol=rtol, atol=1e-5)
+
+
+def escape_depths(occupied: np.ndarray, walls: np.ndarray, cell, radius: int, neighbourhood: int,
+                  corner_cutting: bool) -> np.ndarray:
+    """For each occupied cell that is not a wall within ``radius`` rows and columns of ``cell``: the shortest walk
+    through such cells, each move clear of walls, to a free cell (inf elsewhere) - from every free cell at once on
+    the graph of the cells that are not walls, its walks going on from those cells only."""
+    rows, cols = occupied.shape
+    near = np.zeros_like(occupied)
+    near[max(0, cell[0] - radius):cell[0] + radius + 1, max(0, cell[1] - radius):cell[1] + radius + 1] = True
+    inside = (occupied & ~walls & near).ravel()
+    walks = graph(walls, neighbourhood, corner_cutting).tocoo()
+    kept = inside[walks.row]
+    through = coo_matrix((walks.data[kept], (walks.row[kept], walks.col[kept])), shape=walks.shape)
+    free = np.flatnonzero(~occupied.ravel())
+    depth = (np.full(rows * cols, np.inf) if not len(free)
+             else dijkstra(through.T.tocsr(), indices=free, min_only=True))
+    return np.where(inside, depth, np.inf).reshape(rows, cols)
+
+
+def escape_totals(occupied: np.ndarray, walls: np.ndarray, cell, neighbourhood: int, corner_cutting: bool,
+                  distance, max_length: float) -> dict:
+    """For each first move out of ``cell`` (an escape from under an obstacle, ARCHITECTURE §5.5): the least walk
+    length + ``distance(free cell)`` over the walks that start with it and end on a free cell within
+    ``max_length`` - walks of moves clear of walls through occupied cells, each move's occupied cells no deeper
+    (:func:`escape_depths`, within ceil(max_length) of ``cell``) than the cell it leaves. A plain Dijkstra."""
+    rows, cols = occupied.shape
+    depth = escape_depths(occupied, walls, cell, math.ceil(max_length), neighbourhood, corner_cutting)
+
+    def moves(here):
+        for dr, dc in offsets(neighbourhood):
+            there = (here[0] + dr, here[1] + dc)
+            passed = [there] + [(here[0] + y, here[1] + x) for y, x in crossed(dr, dc, corner_cutting)]
+            if all(0 <= r < rows and 0 <= c < cols and not walls[r, c] for r, c in passed) and (
+                    not occupied[there] or all(depth[p] <= depth[here] for p in passed if occupied[p])):
+                yield there, math.hypot(dr, dc)
+
+    totals = {}
+    for first, length in moves(cell):
+        walked, heap, best = {first: length}, [(length, first)], math.inf
+        while heap:
+            here_length, here = heapq.heappop(heap)
+            if here_length > walked[here] or here_length > max_length:
+                continue
+            if not occupied[here]:
+                best = min(best, here_length + distance(here))
+                continue
+            for there, step in moves(here):
+                if here_length + step < walked.get(there, math.inf):
+                    walked[there] = here_length + step
+                    heapq.heappush(heap, (here_length + step, there))
+        totals[first] = best
+    return totals

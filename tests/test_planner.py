@@ -6,8 +6,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import dijkstra
 
 import tdp
 from tdp.blockage import BlockageMonitor, segment_near_path
@@ -16,10 +14,9 @@ from tdp.nodes import NodeGraph, place_nodes
 from tdp.plot import oracle_text
 from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
-from tdp.stencil import _depths, escape_move
+from tdp.stencil import _depths, _Legs, _Window, escape_move
 
-from reference import distances_to
-from reference import graph as reference_graph
+from reference import distances_to, escape_depths, escape_totals
 
 DEFAULT = tdp.NavigatorConfig(planner="accelerating")
 
@@ -430,31 +427,49 @@ def test_escape_move_takes_the_shortest_way_out_towards_the_goal_never_deeper():
 def test_an_escapes_depths_are_scipys_dijkstra_from_the_free_cells(seed, stencil):
     """The depth of each covered cell near the robot (``escape_move`` walks no deeper): the shortest walk through
     covered cells that are not walls, within the window, to a free cell, its moves clear of walls - against scipy's
-    Dijkstra on the reference graph of the cells that are not walls, from every free cell at once. The depths were a
-    Python Dijkstra (up to 34 ms a tick under a box in a corridor world); they are now numpy relaxations of the
-    window."""
+    Dijkstra on the reference graph of the cells that are not walls, from every free cell at once
+    (tests/reference.py's ``escape_depths``)."""
     rng = np.random.default_rng(seed)
     rows, cols = int(rng.integers(1, 30)), int(rng.integers(1, 30))
     occupied = rng.random((rows, cols)) < rng.uniform(0.2, 0.95)
     walls = occupied & (rng.random((rows, cols)) < rng.uniform(0, 0.6))
     cell, radius = (int(rng.integers(rows)), int(rng.integers(cols))), int(rng.integers(1, 20))
-    ours = _depths(occupied, walls, cell, tdp.stencil.moves(*stencil), radius)
-    near = np.zeros_like(occupied)
-    near[max(0, cell[0] - radius):cell[0] + radius + 1, max(0, cell[1] - radius):cell[1] + radius + 1] = True
-    inside = (occupied & ~walls & near).ravel()
-    walks = reference_graph(walls, *stencil).tocoo()  # every move between cells that are not walls
-    kept = inside[walks.row]  # a walk goes on from covered cells inside the window only
-    graph = coo_matrix((walks.data[kept], (walks.row[kept], walks.col[kept])), shape=walks.shape)
-    free = np.flatnonzero(~occupied.ravel())
-    expected = (np.full(rows * cols, np.inf) if not len(free)
-                else dijkstra(graph.T.tocsr(), indices=free, min_only=True))
-    for index in np.flatnonzero(inside):
-        here = divmod(int(index), cols)
-        if np.isfinite(expected[index]):
-            assert ours[here] == pytest.approx(expected[index], rel=1e-12)
-        else:
-            assert here not in ours
-    assert set(ours) <= {divmod(int(i), cols) for i in np.flatnonzero(inside)}
+    window = _Window.around(occupied, walls, cell, radius)
+    depth = _depths(window, _Legs.of(window, tdp.stencil.moves(*stencil)))
+    ours = np.full(occupied.shape, np.inf)
+    found = np.flatnonzero(np.isfinite(depth))
+    for here, value in zip(window.cells(found), depth[found]):
+        ours[here] = value
+    expected = escape_depths(occupied, walls, cell, radius, *stencil)
+    np.testing.assert_array_equal(np.isinf(ours), np.isinf(expected))
+    np.testing.assert_allclose(ours[np.isfinite(ours)], expected[np.isfinite(expected)], rtol=1e-12)
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from([(4, False), (8, False), (8, True), (16, False), (16, True)]))
+def test_an_escape_starts_the_best_walk_out_of_a_plain_dijkstra(seed, stencil):
+    """``escape_move``'s first move starts a walk out from under the obstacles that is as good (walk length +
+    distance from where it leaves them) as the best of a plain Dijkstra's from each first move (tests/reference.py),
+    and it is None exactly where no walk leads to a finite distance: on random maps of occupied cells, walls among
+    them, robots on walls, short and long walks, goals some exits cannot reach."""
+    rng = np.random.default_rng(seed)
+    rows, cols = int(rng.integers(1, 30)), int(rng.integers(1, 30))
+    occupied = rng.random((rows, cols)) < rng.uniform(0.2, 0.95)
+    walls = occupied & (rng.random((rows, cols)) < rng.uniform(0, 0.6))
+    cell = (int(rng.integers(rows)), int(rng.integers(cols)))
+    occupied[cell] = True
+    walls[cell] = rng.random() < 0.1
+    goal, cut = (int(rng.integers(rows)), int(rng.integers(cols))), int(rng.integers(2, 9))
+    distance = lambda c: math.inf if (c[0] + c[1]) % cut == 0 else math.hypot(c[0] - goal[0], c[1] - goal[1])  # noqa: E731
+    max_length = float(rng.choice([tdp.stencil.ESCAPE_CELLS, 1.5, rng.uniform(1, 20)]))
+    step = escape_move(occupied, cell, tdp.stencil.moves(*stencil),
+                       lambda cells: np.array([distance(c) for c in cells]), walls, max_length)
+    totals = escape_totals(occupied, walls, cell, *stencil, distance, max_length)
+    best = min(totals.values(), default=math.inf)
+    if not math.isfinite(best):
+        assert step is None
+    else:
+        assert totals[step] == pytest.approx(best, rel=1e-12)
 
 
 @pytest.mark.parametrize("accelerating", [True, False])
