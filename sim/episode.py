@@ -103,6 +103,17 @@ def inflated_scenario(scenario: tdp.Scenario, margin_cells: float) -> tdp.Scenar
                         name=scenario.name, max_ticks=scenario.max_ticks)
 
 
+def episode_ticks(scenario: tdp.Scenario, sim: SimConfig) -> int:
+    """The ticks a PyBullet episode of ``scenario`` may last: the world's ``max_ticks`` where it sets them; else its
+    grid-level limit (``tick_limit``, 4 (H + W): about a cell a tick) stretched by the ticks the robot needs per cell
+    at ``sim.max_speed``. On a map of 1 m cells with 0.2 s ticks the robot crosses a cell in 10 ticks: the grid's
+    limit ended a 745 m route through a 512 x 512 map of rooms after 406 m."""
+    cells_per_tick = sim.max_speed * scenario.tick_s / scenario.grid.resolution
+    if scenario.max_ticks or cells_per_tick <= 0:
+        return scenario.tick_limit
+    return math.ceil(scenario.tick_limit / min(1.0, cells_per_tick))
+
+
 def grown_oracle(scenario: tdp.Scenario, config: tdp.NavigatorConfig, margin_cells: float,
                  max_ticks: int) -> dict | None:
     """The oracle's run (:func:`tdp.simulate.oracle_run`) on :func:`inflated_scenario`, or None where that has no
@@ -216,16 +227,21 @@ class _Run:
         return float(cx[nearest]), float(cy[nearest])
 
     def _count_contacts(self) -> None:
-        obstacles = set(self.world.obstacle_bodies())
-        touching = any(c[2] in obstacles for c in p.getContactPoints(bodyA=self.robot.body,
-                                                                     physicsClientId=self.client))
+        touching = any(self.world.is_obstacle(c[2]) for c in p.getContactPoints(bodyA=self.robot.body,
+                                                                                physicsClientId=self.client))
         self.contact_steps += int(touching)
 
     def _measure_clearance(self) -> None:
         """The robot's distance to the nearest obstacle now (metres, up to CLEARANCE_M): its minimum and its
-        samples, one per control step."""
+        samples, one per control step. Only the obstacles whose bounding boxes come within CLEARANCE_M of the
+        robot's are asked."""
         nearest = CLEARANCE_M
-        for body in self.world.obstacle_bodies():
+        low, high = p.getAABB(self.robot.body, physicsClientId=self.client)
+        for link in range(p.getNumJoints(self.robot.body, physicsClientId=self.client)):
+            link_low, link_high = p.getAABB(self.robot.body, link, physicsClientId=self.client)
+            low, high = np.minimum(low, link_low), np.maximum(high, link_high)
+        reach = np.array([CLEARANCE_M, CLEARANCE_M, 0.0])
+        for body in self.world.obstacles_near(tuple(low - reach), tuple(high + reach)):
             for point in p.getClosestPoints(self.robot.body, body, CLEARANCE_M, physicsClientId=self.client):
                 nearest = min(nearest, point[8])
         self.min_clearance = min(self.min_clearance, nearest)
@@ -306,7 +322,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     try:
         run = _Run(scenario, config, sim, client)
         camera = TopCamera(client, run.grid) if frames is not None else None
-        max_ticks = scenario.tick_limit
+        max_ticks = episode_ticks(scenario, sim)
         tick = 0
         began = time.perf_counter()
         while tick < max_ticks and not run.reached():

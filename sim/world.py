@@ -15,6 +15,13 @@ import tdp
 from tdp.grid import rectangles
 
 BOX_HEIGHT_M = 0.3
+WALL_COLOUR = (0.45, 0.45, 0.45, 1)
+
+#: The most shapes PyBullet keeps in one body (``createCollisionShapeArray`` drops the rest).
+SHAPES_PER_BODY = 16
+
+#: The map's walls are grouped into bodies tile by tile, tiles this many cells a side, so each body stays local.
+WALL_TILE_CELLS = 16
 
 
 class SimWorld:
@@ -25,20 +32,38 @@ class SimWorld:
         self.grid = tdp.GridMap(scenario.grid.occupied, cell_m)
         floor = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=client)
         self.floor = p.createMultiBody(0, floor, physicsClientId=client)
-        self.half_extents: dict[int, tuple[float, float, float]] = {}  # body -> half extents (m)
-        self.static_bodies = [self._box_body(box, (0.45, 0.45, 0.45, 1)) for box in rectangles(scenario.grid.occupied)]
+        self.half_extents: dict[int, tuple[float, float, float]] = {}  # moving box's body -> half extents (m)
+        self.static_bodies = [self._wall_body(group) for group in wall_groups(rectangles(scenario.grid.occupied))]
+        self._static = frozenset(self.static_bodies)
         self.moving: dict[int, int] = {}  # obstacle index -> body
         self._last_seen: dict[int, tuple[float, float, float]] = {}  # body -> (time, x, y) at the last rasterising
         self.update(0.0)
 
+    def _wall_body(self, boxes: list[tuple[int, int, int, int]]) -> int:
+        """One static body of the map's wall rectangles ``boxes`` (at most SHAPES_PER_BODY). A body of its own for
+        each of the thousands of rectangles of a large map made every physics step cost tens of milliseconds."""
+        halves = [self._half(box) for box in boxes]
+        centres = [self._centre(box) for box in boxes]
+        types = [p.GEOM_BOX] * len(boxes)
+        shape = p.createCollisionShapeArray(types, halfExtents=halves, collisionFramePositions=centres,
+                                            physicsClientId=self.client)
+        visual = p.createVisualShapeArray(types, halfExtents=halves, visualFramePositions=centres,
+                                          physicsClientId=self.client)
+        body = p.createMultiBody(0, shape, visual, (0, 0, 0), useMaximalCoordinates=True, physicsClientId=self.client)
+        p.changeVisualShape(body, -1, rgbaColor=WALL_COLOUR, physicsClientId=self.client)
+        return body
+
     def _box_body(self, box: tuple[float, float, float, float], colour) -> int:
-        r0, c0, r1, c1 = box
-        half = (self.cell_m * (c1 - c0) / 2, self.cell_m * (r1 - r0) / 2, BOX_HEIGHT_M / 2)
+        half = self._half(box)
         shape = p.createCollisionShape(p.GEOM_BOX, halfExtents=half, physicsClientId=self.client)
         visual = p.createVisualShape(p.GEOM_BOX, halfExtents=half, rgbaColor=colour, physicsClientId=self.client)
         body = p.createMultiBody(0, shape, visual, self._centre(box), physicsClientId=self.client)
         self.half_extents[body] = half
         return body
+
+    def _half(self, box) -> tuple[float, float, float]:
+        r0, c0, r1, c1 = box
+        return self.cell_m * (c1 - c0) / 2, self.cell_m * (r1 - r0) / 2, BOX_HEIGHT_M / 2
 
     def _centre(self, box) -> tuple[float, float, float]:
         r0, c0, r1, c1 = box
@@ -67,8 +92,15 @@ class SimWorld:
                 p.resetBasePositionAndOrientation(self.moving[index], self._centre(self.obstacle_box(index, time_s)),
                                                   (0, 0, 0, 1), physicsClientId=self.client)
 
-    def obstacle_bodies(self) -> list[int]:
-        return self.static_bodies + list(self.moving.values())
+    def is_obstacle(self, body: int) -> bool:
+        """Whether ``body`` is a wall or a moving box."""
+        return body in self._static or body in self.moving.values()
+
+    def obstacles_near(self, low: tuple[float, float, float], high: tuple[float, float, float]) -> list[int]:
+        """The bodies of the walls whose bounding boxes meet the box from ``low`` to ``high`` (metres), and every
+        moving box."""
+        found = p.getOverlappingObjects(low, high, physicsClientId=self.client) or ()
+        return sorted({body for body, _ in found if body in self._static}) + list(self.moving.values())
 
     def moving_footprints(self, inflate_m: float, time_s: float, horizon_s: float = 0.0) -> np.ndarray:
         """bool (H, W): cells whose centres lie within ``inflate_m`` of a moving box, from the bodies' poses, each
@@ -85,6 +117,16 @@ class SimWorld:
             swept = (min(x, x + dx) - hx, min(y, y + dy) - hy, max(x, x + dx) + hx, max(y, y + dy) + hy)
             mask |= box_cells(self.grid, swept, inflate_m)
         return mask
+
+
+def wall_groups(boxes: list[tuple[int, int, int, int]]) -> list[list[tuple[int, int, int, int]]]:
+    """The rectangles ``boxes`` (r0, c0, r1, c1) in groups of at most SHAPES_PER_BODY, each within one tile of
+    WALL_TILE_CELLS cells a side (by its first cell)."""
+    tiles: dict[tuple[int, int], list] = {}
+    for box in boxes:
+        tiles.setdefault((box[0] // WALL_TILE_CELLS, box[1] // WALL_TILE_CELLS), []).append(box)
+    return [group[k:k + SHAPES_PER_BODY] for _, group in sorted(tiles.items())
+            for k in range(0, len(group), SHAPES_PER_BODY)]
 
 
 def cell_centres(grid: tdp.GridMap) -> tuple[np.ndarray, np.ndarray]:

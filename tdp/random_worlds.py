@@ -353,7 +353,8 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     """A quick world on any map: ``boxes`` boxes of about 0.3-0.6 m shuttling back and forth over free ground at
     0.3-0.6 cells per tick (the family generator's rule, here on a given map), kept clear of the walls, the start
     and the goal; with ``blockage``, one more box appears in a narrow place of the robot's route about a third of the
-    way along and stays. Deterministic for a given seed.
+    way along and stays. Deterministic for a given seed. No ``max_ticks`` of its own: an episode gets the default
+    limit, which a PyBullet run stretches where the robot needs more than a tick a cell.
 
     Raises:
         ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
@@ -391,7 +392,7 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
         plug, change = _plug_on_route(grid, route)
         obstacles.append(plug)
     return Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
-                    blocking=len(obstacles) - 1 if blockage else None, max_ticks=4 * sum(grid.shape),
+                    blocking=len(obstacles) - 1 if blockage else None,
                     description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
 
 

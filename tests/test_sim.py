@@ -11,10 +11,10 @@ import pytest
 
 import tdp
 from sim.__main__ import main as sim_command
-from sim.episode import SimConfig, connect, margin_floor_m, run_episode
+from sim.episode import CLEARANCE_M, SimConfig, connect, episode_ticks, margin_floor_m, run_episode
 from sim.render import oracle_text
 from sim.robot import DiffDriveRobot, wheel_speeds
-from sim.world import SimWorld, box_cells
+from sim.world import SHAPES_PER_BODY, WALL_TILE_CELLS, SimWorld, box_cells, wall_groups
 from tdp.contract import WorldFeed
 from tdp.grid import rectangles
 
@@ -100,6 +100,50 @@ def test_rectangles_cover_exactly_the_occupied_cells(seed):
     for r0, c0, r1, c1 in rectangles(occupied):
         cover[r0:r1, c0:c1] += 1
     np.testing.assert_array_equal(cover, occupied.astype(int))
+
+
+def test_an_episode_on_a_coarse_map_lasts_as_long_as_the_robot_needs_to_cross_it():
+    fine = tdp.Scenario(tdp.GridMap(np.zeros((30, 50), bool), resolution=0.1), (0, 0), (29, 49))
+    coarse = tdp.Scenario(tdp.GridMap(np.zeros((30, 50), bool), resolution=1.0), (0, 0), (29, 49))
+    assert episode_ticks(fine, SimConfig()) == fine.tick_limit == 320  # 0.5 m/s x 0.2 s: a cell a tick
+    assert episode_ticks(coarse, SimConfig()) == 3200  # a tenth of a cell a tick
+    assert episode_ticks(coarse, SimConfig(max_speed=1.0)) == 1600
+    assert episode_ticks(fine, SimConfig(max_speed=2.0)) == 320  # never below the grid's limit
+    assert episode_ticks(coarse, SimConfig(max_speed=0.0)) == 320
+    bounded = tdp.Scenario(coarse.grid, (0, 0), (29, 49), max_ticks=77)
+    assert episode_ticks(bounded, SimConfig()) == 77  # the world's own limit stands
+
+
+def test_wall_groups_hold_each_rectangle_once_at_most_sixteen_a_body_within_a_tile():
+    boxes = rectangles(np.random.default_rng(0).random((70, 90)) < 0.3)
+    groups = wall_groups(boxes)
+    assert sorted(box for group in groups for box in group) == sorted(boxes)
+    assert max(len(group) for group in groups) == SHAPES_PER_BODY  # some tiles hold more than one body's worth
+    for group in groups:
+        assert len({(r0 // WALL_TILE_CELLS, c0 // WALL_TILE_CELLS) for r0, c0, _, _ in group}) == 1
+
+
+def test_every_wall_is_solid_and_found_near_where_it_stands(client):
+    """The map's wall rectangles, many to a PyBullet body: a probe at each rectangle's centre touches a wall (a
+    body holds only the first 16 shapes it is given: the rest would be silently missing), and the walls
+    ``obstacles_near`` finds round a probe include every one within CLEARANCE_M of it."""
+    occupied = np.random.default_rng(1).random((60, 70)) < 0.25
+    world = SimWorld(client, tdp.Scenario(tdp.GridMap(occupied), (0, 0), (1, 1)), cell_m=0.1, tick_s=0.2)
+    assert len(world.static_bodies) < len(rectangles(occupied))
+    probe = p.createMultiBody(1, p.createCollisionShape(p.GEOM_SPHERE, radius=0.02, physicsClientId=client), -1,
+                              (0, 0, 0.1), physicsClientId=client)
+    for r0, c0, r1, c1 in rectangles(occupied):
+        centre = (0.1 * (c0 + c1) / 2, 0.1 * (60 - (r0 + r1) / 2), 0.1)
+        p.resetBasePositionAndOrientation(probe, centre, (0, 0, 0, 1), physicsClientId=client)
+        p.performCollisionDetection(physicsClientId=client)
+        distances = [point[8] for body in world.static_bodies
+                     for point in p.getClosestPoints(probe, body, 0.05, physicsClientId=client)]
+        assert distances and min(distances) < 0, (r0, c0, r1, c1)
+        low, high = p.getAABB(probe, physicsClientId=client)
+        near = set(world.obstacles_near(tuple(np.subtract(low, CLEARANCE_M)), tuple(np.add(high, CLEARANCE_M))))
+        within = {body for body in world.static_bodies
+                  if p.getClosestPoints(probe, body, CLEARANCE_M, physicsClientId=client)}
+        assert within <= near
 
 
 @pytest.mark.parametrize("name", tdp.scenarios.names())
