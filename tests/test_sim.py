@@ -4,6 +4,7 @@ import math
 import subprocess
 import sys
 import warnings
+from types import SimpleNamespace
 
 import numpy as np
 import pybullet as p
@@ -303,6 +304,31 @@ def test_cli_errors_are_one_line(args, message, monkeypatch):
     done = subprocess.run([sys.executable, "-m", "sim", *args], capture_output=True, text=True, env=env)
     assert done.returncode == 2
     assert message in done.stderr and "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("ticks", [0, 1, 7, 8, 9, 40, 41, 333])
+def test_a_long_episodes_film_is_thinned_evenly_and_keeps_its_last_state(ticks, monkeypatch):
+    """``run_episode``'s pictures (a stand-in camera that names the tick it was asked at): every second tick from the
+    first and the last state; past MAX_FRAMES (4 here) every other picture goes and the rest come half as often."""
+    import sim.episode as episode
+
+    monkeypatch.setattr(episode, "MAX_FRAMES", 4)
+    now = {"tick": 0}
+    frames = ["kept from before"]
+    film = episode._Film(frames, SimpleNamespace(picture=lambda: now["tick"]), every=2)
+    for tick in range(1, ticks + 1):
+        now["tick"] = tick
+        film.shoot(tick)
+    film.finish(ticks)
+    shots = frames[1:]
+    assert frames[0] == "kept from before" and shots[-1] == ticks and len(shots) <= 4 + 1
+    unthinned = list(range(1, ticks + 1, 2))
+    if ticks <= 8:  # at most four pictures: the rule as it always was
+        assert shots == unthinned + ([ticks] if ticks not in unthinned else [])
+    else:
+        spacing = set(np.diff(shots[:-1]).tolist())
+        assert shots[0] == 1 and len(spacing) == 1 and spacing.pop() in (4, 8, 16, 32, 64, 128)
+        assert 0 < shots[-1] - shots[-2] <= np.diff(shots[:2])[0]
 
 
 def test_camera_frames_and_the_side_by_side_animation(tmp_path, capsys):
