@@ -32,6 +32,9 @@ FAMILIES = ("cluttered", "rooms", "corridor", "clearing", "moving-target", "cros
 #: Metres per cell of the generated maps (as in the named scenarios: a robot at 0.5 m/s crosses a cell per 0.2 s
 #: tick).
 CELL_M = 0.1
+#: The tick of the worlds made here, in seconds per metre of a cell: 0.2 s on CELL_M, the time a robot at 0.5 m/s
+#: takes to cross a cell, so that boxes at 0.3-0.6 cells a tick move at a third to a half of its speed on any map.
+TICK_S_PER_M = 2.0
 #: Families whose worlds contain a change that cuts or opens a route (the others never cut one).
 CUTTING = ("rooms", "corridor", "clearing")
 
@@ -353,8 +356,10 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     """A quick world on any map: ``boxes`` boxes of about 0.3-0.6 m shuttling back and forth over free ground at
     0.3-0.6 cells per tick (the family generator's rule, here on a given map), kept clear of the walls, the start
     and the goal; with ``blockage``, one more box appears in a narrow place of the robot's route about a third of the
-    way along and stays. Deterministic for a given seed. No ``max_ticks`` of its own: an episode gets the default
-    limit, which a PyBullet run stretches where the robot needs more than a tick a cell.
+    way along and stays. Deterministic for a given seed. Its tick (``tick_s``, for runners on a clock as PyBullet's)
+    is the time a robot at 0.5 m/s takes to cross a cell of the map (TICK_S_PER_M): 0.2 s on 0.1 m cells, 2 s on a
+    MovingAI map's 1 m cells, where the boxes at 0.2 s ticks would have moved at 1.5-3 m/s and rammed a 0.5 m/s robot.
+    No ``max_ticks`` of its own: an episode gets the default limit.
 
     Raises:
         ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
@@ -392,7 +397,7 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
         plug, change = _plug_on_route(grid, route)
         obstacles.append(plug)
     return Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
-                    blocking=len(obstacles) - 1 if blockage else None,
+                    blocking=len(obstacles) - 1 if blockage else None, tick_s=TICK_S_PER_M * grid.resolution,
                     description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
 
 

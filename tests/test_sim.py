@@ -18,6 +18,7 @@ from sim.robot import DiffDriveRobot, wheel_speeds
 from sim.world import SHAPES_PER_BODY, WALL_TILE_CELLS, SimWorld, box_cells, wall_groups
 from tdp.contract import WorldFeed
 from tdp.grid import rectangles
+from tdp.random_worlds import boxes_on_map
 
 
 @pytest.fixture
@@ -113,6 +114,17 @@ def test_an_episode_on_a_coarse_map_lasts_as_long_as_the_robot_needs_to_cross_it
     assert episode_ticks(coarse, SimConfig(max_speed=0.0)) == 320
     bounded = tdp.Scenario(coarse.grid, (0, 0), (29, 49), max_ticks=77)
     assert episode_ticks(bounded, SimConfig()) == 77  # the world's own limit stands
+
+
+@pytest.mark.parametrize("resolution", [0.05, 0.1, 1.0])
+def test_a_quick_worlds_tick_is_the_time_the_robot_takes_to_cross_a_cell(resolution):
+    """So its boxes (0.3-0.6 cells a tick) move at a third to a half of the robot's 0.5 m/s on any map: at 0.2 s
+    ticks on a MovingAI map's 1 m cells they moved at 1.5-3 m/s and rammed it (RESULTS, "Planner in PyBullet")."""
+    world = boxes_on_map(tdp.GridMap(np.zeros((40, 40), bool), resolution), (1, 1), (38, 38), boxes=3)
+    assert world.tick_s == pytest.approx(2 * resolution)
+    assert episode_ticks(world, SimConfig()) == world.tick_limit  # a cell a tick: nothing to stretch
+    speeds = [box.speed * resolution / world.tick_s for box in world.obstacles]
+    assert speeds and all(0.15 - 1e-9 <= v <= 0.3 + 1e-9 for v in speeds)  # metres a second
 
 
 def test_wall_groups_hold_each_rectangle_once_at_most_sixteen_a_body_within_a_tile():
