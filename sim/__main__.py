@@ -45,7 +45,9 @@ def _ratio(metrics: dict) -> str:
 def _summary(metrics: dict) -> str:
     from .render import oracle_text
 
-    return (f"reached {metrics['reached']} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
+    limit = (f" (the episode's limit, {metrics['max_ticks']} ticks, ran out)"
+             if not metrics["reached"] and metrics["ticks"] >= metrics["max_ticks"] else "")
+    return (f"reached {metrics['reached']}{limit} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
             f"oracle {oracle_text(metrics)}, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m (mean {metrics['mean_clearance_m']:.3f}); planner "
             f"{metrics['planner_ms_per_tick']['median']:.2f} ms/tick (median); wall {metrics['wall_s']:.1f} s")

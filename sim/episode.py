@@ -377,7 +377,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
     turn_point, switch_back_point = run.landmark_points()
     return {
         "scenario": scenario.name, "planner": config.planner, "updates_per_move": config.updates_per_move,
-        "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick,
+        "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick, "max_ticks": max_ticks,
         "path_length_m": run.length_m, "oracle_reached": oracle_reached, "oracle_length_m": oracle_m,
         "ratio": run.length_m / oracle_m if oracle_m else None,
         "contacts": run.contact_steps,

@@ -127,6 +127,15 @@ def test_a_quick_worlds_tick_is_the_time_the_robot_takes_to_cross_a_cell(resolut
     assert speeds and all(0.15 - 1e-9 <= v <= 0.3 + 1e-9 for v in speeds)  # metres a second
 
 
+def test_an_episode_whose_limit_runs_out_says_so(tmp_path, capsys):
+    world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (27, 27), max_ticks=3)
+    (tmp_path / "short.yaml").write_text(world.to_yaml())
+    assert sim_command(["run", "--world", str(tmp_path / "short.yaml"), "--out", str(tmp_path)]) == 0
+    assert "reached False (the episode's limit, 3 ticks, ran out) in 0.6 s" in capsys.readouterr().out
+    metrics = json.loads((tmp_path / "metrics.json").read_text())
+    assert metrics["ticks"] == metrics["max_ticks"] == 3 and not metrics["reached"]
+
+
 def test_wall_groups_hold_each_rectangle_once_at_most_sixteen_a_body_within_a_tile():
     boxes = rectangles(np.random.default_rng(0).random((70, 90)) < 0.3)
     groups = wall_groups(boxes)
