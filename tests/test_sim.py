@@ -127,13 +127,19 @@ def test_a_quick_worlds_tick_is_the_time_the_robot_takes_to_cross_a_cell(resolut
     assert speeds and all(0.15 - 1e-9 <= v <= 0.3 + 1e-9 for v in speeds)  # metres a second
 
 
-def test_an_episode_whose_limit_runs_out_says_so(tmp_path, capsys):
+def test_an_episode_whose_limit_runs_out_says_so_and_the_margins_flag(tmp_path, capsys):
     world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (27, 27), max_ticks=3)
     (tmp_path / "short.yaml").write_text(world.to_yaml())
     assert sim_command(["run", "--world", str(tmp_path / "short.yaml"), "--out", str(tmp_path)]) == 0
     assert "reached False (the episode's limit, 3 ticks, ran out) in 0.6 s" in capsys.readouterr().out
     metrics = json.loads((tmp_path / "metrics.json").read_text())
     assert metrics["ticks"] == metrics["max_ticks"] == 3 and not metrics["reached"]
+    with pytest.warns(UserWarning, match=r"--margin 0.708 on the command line"):  # 1 m cells: the flag it names
+        sim_command(["run", "--map", "tests/data/arena.map", "--start", "1", "3", "--goal", "5", "5", "--boxes", "0",
+                     "--margin", "0.5", "--out", str(tmp_path)])
+    assert sim_command(["run", "--map", "tests/data/arena.map", "--start", "1", "3", "--goal", "5", "5", "--boxes",
+                        "0", "--margin", "0.708", "--out", str(tmp_path)]) == 0
+    assert json.loads((tmp_path / "metrics.json").read_text())["contacts"] == 0
 
 
 def test_wall_groups_hold_each_rectangle_once_at_most_sixteen_a_body_within_a_tile():
@@ -319,6 +325,7 @@ def test_start_without_room_for_the_robot_is_a_clear_error():
     (["run", "--scenario", "nowhere"], "unknown scenario"),
     (["run", "--scenario", "static", "--gui"], "needs a display"),
     (["run", "--scenario", "static", "--updates", "0"], "positive integer"),
+    (["run", "--scenario", "static", "--margin", "-0.1"], "margin_m must be a finite number >= 0, got -0.1"),
 ])
 def test_cli_errors_are_one_line(args, message, monkeypatch):
     env = {"PATH": "/usr/bin:/bin", "HOME": "/tmp"}
