@@ -30,8 +30,8 @@ def _run_and_save(args: argparse.Namespace, planner: str, out: Path, stem: str, 
     from .render import save_trace_figure
 
     scenario, config = world_from(args, costs_on_any_world=True), _config(args, planner)
-    sim = SimConfig(cost_scaling_factor=args.cost_scaling_factor, inflation_radius=args.inflation_radius,
-                    margin_m=args.margin)
+    margin = {} if args.margin is None else {"margin_m": args.margin}
+    sim = SimConfig(cost_scaling_factor=args.cost_scaling_factor, inflation_radius=args.inflation_radius, **margin)
     print(f"running {scenario.name} in PyBullet ({config.label()})", flush=True)
     metrics = run_episode(scenario, config, sim, gui=getattr(args, "gui", False), progress=True, frames=frames)
     metrics["json"] = str(save_json(metrics, out / f"{stem}.json"))
@@ -117,8 +117,6 @@ def _positive(text: str) -> int:
 def parser() -> argparse.ArgumentParser:
     from tdp.cli import add_planner_argument, add_world_arguments
 
-    from .episode import SimConfig
-
     main = argparse.ArgumentParser(prog="python -m sim", description=__doc__,
                                    formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = main.add_subparsers(dest="command", required=True)
@@ -133,9 +131,9 @@ def parser() -> argparse.ArgumentParser:
                          help="obstacle prediction's horizon in ticks for the node layers (default 0: off)")
         sub.add_argument("--avoid-boxes", action="store_true",
                          help="yield or step aside instead of moving into a cell a box is about to enter")
-        sub.add_argument("--margin", type=float, default=SimConfig.margin_m, metavar="M",
-                         help="metres obstacles grow by beyond the robot's radius (default %(default)g; at least half "
-                              "a cell's diagonal: 0.708 on 1 m cells)")
+        sub.add_argument("--margin", type=float, metavar="M",
+                         help="metres obstacles grow by beyond the robot's radius (default SimConfig's, 0.1; at least "
+                              "half a cell's diagonal: 0.708 on 1 m cells)")
         sub.add_argument("--out", default=f"out/sim-{name}", help="output folder")
         sub.add_argument("--animate", action="store_true",
                          help="also write animation.gif from the simulator's own camera (headless)")
