@@ -280,8 +280,8 @@ def _check_episode(scenario, config, sim, gui, frames) -> None:
         enough_m = math.ceil(floor_m * 1000) / 1000
         warnings.warn(f"margin_m {sim.margin_m:g} is less than half a cell's diagonal ({floor_m:.3g} m on this map's "
                       f"{scenario.grid.resolution:g} m cells): the planners may route the robot through gaps it does "
-                      f"not fit, and it may touch obstacles; give SimConfig(margin_m={enough_m:g}) (--margin {enough_m:g} "
-                      f"on the command line) or more, or a finer map", UserWarning, stacklevel=3)
+                      f"not fit, and it may touch obstacles; give SimConfig(margin_m={enough_m:g}) "
+                      f"(--margin {enough_m:g} on the command line) or more, or a finer map", UserWarning, stacklevel=3)
 
 
 class TopCamera:

@@ -460,7 +460,10 @@ def test_an_escape_starts_the_best_walk_out_of_a_plain_dijkstra(seed, stencil):
     occupied[cell] = True
     walls[cell] = rng.random() < 0.1
     goal, cut = (int(rng.integers(rows)), int(rng.integers(cols))), int(rng.integers(2, 9))
-    distance = lambda c: math.inf if (c[0] + c[1]) % cut == 0 else math.hypot(c[0] - goal[0], c[1] - goal[1])  # noqa: E731
+
+    def distance(c):
+        return math.inf if (c[0] + c[1]) % cut == 0 else math.hypot(c[0] - goal[0], c[1] - goal[1])
+
     max_length = float(rng.choice([tdp.stencil.ESCAPE_CELLS, 1.5, rng.uniform(1, 20)]))
     step = escape_move(occupied, cell, tdp.stencil.moves(*stencil),
                        lambda cells: np.array([distance(c) for c in cells]), walls, max_length)
