@@ -41,7 +41,10 @@ def run(args: argparse.Namespace) -> int:
 
         figure = ", ".join(str(f) for f in [figure, *save_episode_animation(scenario, [episode], out / "episode.gif",
                                                                          progress=True)])
-    print(f"reached: {episode.reached} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
+    limit = args.max_ticks or scenario.tick_limit
+    ran_out = (f" (the episode's limit, {limit} ticks, ran out)"
+               if not episode.reached and episode.ticks >= limit else "")
+    print(f"reached: {episode.reached}{ran_out} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
           f"{oracle_text(episode)}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
           f"({sum(d['relevant'] for d in episode.detections)} relevant); planner "

@@ -116,7 +116,7 @@ def test_the_ros_world_runs_at_grid_level_and_in_pybullet_with_one_command_each(
     assert physics["reached"] and physics["contacts"] == 0 and physics["sim"]["cell_m"] == 0.05
 
 
-def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tmp_path):
+def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tmp_path, capsys):
     from tdp.random_worlds import boxes_on_map
 
     grid = tdp.load_map(ROOT / "tests" / "data" / "arena.map")
@@ -135,5 +135,8 @@ def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tm
     assert tdp_command(["run", "--map", arena, "--start", "1", "3", "--goal", "47", "46", "--boxes", "4", "--seed",
                         "1", "--blockage", "--out", str(tmp_path)]) == 0
     assert json.loads((tmp_path / "metrics.json").read_text())["reached"]
+    assert tdp_command(["run", "--map", arena, "--start", "1", "3", "--goal", "47", "46", "--max-ticks", "5",
+                        "--out", str(tmp_path)]) == 0
+    assert "reached: False (the episode's limit, 5 ticks, ran out) in 5 ticks" in capsys.readouterr().out
     done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--out", str(tmp_path))
     assert done.returncode == 2 and "--map needs --start" in done.stderr
