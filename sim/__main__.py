@@ -44,10 +44,11 @@ def _ratio(metrics: dict) -> str:
 
 
 def _summary(metrics: dict) -> str:
+    from tdp.cli import limit_note
+
     from .render import oracle_text
 
-    limit = (f" (the episode's limit, {metrics['max_ticks']} ticks, ran out)"
-             if not metrics["reached"] and metrics["ticks"] >= metrics["max_ticks"] else "")
+    limit = limit_note(metrics["reached"], metrics["ticks"], metrics["max_ticks"])
     return (f"reached {metrics['reached']}{limit} in {metrics['time_s']:.1f} s; path {metrics['path_length_m']:.2f} m, "
             f"oracle {oracle_text(metrics)}, ratio {_ratio(metrics)}; contacts {metrics['contacts']}, "
             f"min clearance {metrics['min_clearance_m']:.3f} m (mean {metrics['mean_clearance_m']:.3f}); planner "

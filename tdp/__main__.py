@@ -26,7 +26,7 @@ def list_scenarios(args: argparse.Namespace) -> int:
 def run(args: argparse.Namespace) -> int:
     """Run one episode and write metrics.json and episode.png into --out."""
     import tdp
-    from tdp.cli import config_from, output_folder, save_json, world_from
+    from tdp.cli import config_from, limit_note, output_folder, save_json, world_from
     from tdp.plot import oracle_text, save_episode_figure
 
     scenario = world_from(args)
@@ -41,9 +41,7 @@ def run(args: argparse.Namespace) -> int:
 
         figure = ", ".join(str(f) for f in [figure, *save_episode_animation(scenario, [episode], out / "episode.gif",
                                                                          progress=True)])
-    limit = args.max_ticks or scenario.tick_limit
-    ran_out = (f" (the episode's limit, {limit} ticks, ran out)"
-               if not episode.reached and episode.ticks >= limit else "")
+    ran_out = limit_note(episode.reached, episode.ticks, args.max_ticks or scenario.tick_limit)
     print(f"reached: {episode.reached}{ran_out} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
           f"{oracle_text(episode)}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "

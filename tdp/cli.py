@@ -133,6 +133,11 @@ def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
     return tdp.scenarios.get(args.scenario)
 
 
+def limit_note(reached: bool, ticks: int, max_ticks: int) -> str:
+    """The words a run's summary line adds when the episode stopped because its ``max_ticks`` ran out, else none."""
+    return f" (the episode's limit, {max_ticks} ticks, ran out)" if not reached and ticks >= max_ticks else ""
+
+
 def output_folder(path: str | Path, option: str = "--out") -> Path:
     """Create the output folder ``path`` (and its parents) now, before any long work, or raise ValueError saying
     why it cannot be one (a file is in the way, no permission)."""

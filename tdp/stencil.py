@@ -211,6 +211,10 @@ class _Window(NamedTuple):
         """The flat index of map cell ``cell``."""
         return (cell[0] - self.top) * self.width + cell[1] - self.left
 
+    def walked_through(self) -> np.ndarray:
+        """The flat indices of the inner cells an escape's walk may go through: occupied, not walls."""
+        return np.flatnonzero(self.inner & self.covered & ~self.walled)
+
     def cells(self, flat: np.ndarray) -> list[tuple[int, int]]:
         """The map cells at the flat indices ``flat``."""
         rows, cols = np.divmod(flat, self.width)
@@ -243,7 +247,7 @@ def _depths(window: _Window, legs: _Legs) -> np.ndarray:
     the ``legs``' moves through such cells to a free cell (inf elsewhere, flat): scipy's Dijkstra on their graph,
     from a source one move from each cell with a move out (moves are symmetric: a search from all the free cells at
     once), its edges gathered for all the cells at once."""
-    at = np.flatnonzero(window.inner & window.covered & ~window.walled)  # the cells a walk goes through
+    at = window.walked_through()
     index = np.full(len(window.covered), -1)
     index[at] = np.arange(len(at))
     ahead, clear = legs.ahead + at, legs.clear(window, at)
@@ -264,7 +268,7 @@ def _walks(window: _Window, legs: _Legs, start: int) -> csr_matrix:
     an occupied cell that is not a wall, clear of walls, into a free cell or into occupied cells no deeper than the
     one it leaves (:func:`_depths`)."""
     depth = _depths(window, legs)
-    at = np.union1d(np.flatnonzero(window.inner & window.covered & ~window.walled), [start])
+    at = np.union1d(window.walked_through(), [start])
     ahead, crossed = legs.ahead + at, legs.crossed[:, :, None] + at
     shallow = np.ones(ahead.shape, bool)
     for passed in (ahead, crossed[:, 0], crossed[:, 1]):
