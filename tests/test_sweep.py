@@ -65,6 +65,13 @@ def test_episodes_expand_the_grid_with_one_oracle_per_world_and_stencil(tmp_path
     assert planners.count("oracle") == 2
 
 
+def test_a_world_named_twice_is_one_world(tmp_path):
+    text = ("worlds: [{family: rooms, size: 60, seeds: [3, 3, 4]}, {family: rooms, size: 60, seeds: 4}]\n"
+            "planners: [{planner: plain-dp}]\n")
+    spec = load_spec(spec_file(tmp_path, text))
+    assert [w.coords["seed"] for w in spec.worlds] == [3, 4] and len(spec.episodes()) == 4
+
+
 def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
     import tdp
 
@@ -101,6 +108,13 @@ def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
      "budget_ms must be a number, got '1e-1' (YAML reads 1e-1 as text"),
     ("name: {a: 1}\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got {'a': 1}"),
     ("name: .nan\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got nan"),
+    ("name: ../out\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must not hold '/'"),
+    ("worlds: [{family: rooms, seeds: []}]\nplanners: [{planner: oracle}]",
+     "worlds[0].seeds is an empty list: it names no world"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: accelerating, nodes: []}]",
+     "planners[0] (accelerating): nodes is an empty list"),
+    ("worlds: [{scenario: static}]\ncommon: {updates_per_move: []}\nplanners: [{planner: plain-dp}]",
+     "planners[0] (plain-dp): updates_per_move is an empty list"),
 ])
 def test_a_bad_spec_is_a_value_error_naming_the_file_and_the_entry(tmp_path, text, words):
     path = spec_file(tmp_path, text)
@@ -158,7 +172,7 @@ def test_two_worlds_on_one_map_get_their_own_names_and_oracles(tmp_path):
             "  - {map: m.map, start: [0, 0], goal: [11, 11], boxes: 0}\n"
             "planners: [{planner: plain-dp}]\n")
     spec = load_spec(spec_file(tmp_path, text))
-    assert [w.coords["world"] for w in spec.worlds] == ["m-0#1", "m-0#2", "m-0#2"]
+    assert [w.coords["world"] for w in spec.worlds] == ["m-0#1", "m-0#2"]  # the third is the second again
     assert {w.coords["group"] for w in spec.worlds} == {"m"}
     rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())
     write_report(spec, rows, tmp_path)

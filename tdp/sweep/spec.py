@@ -172,7 +172,15 @@ def _spec(data, path: Path) -> Spec:
         raise ValueError("'metrics' must be a list of module:function names")
     for name in metrics:
         metric_function(name)
-    return Spec(checks.text(data.get("name"), "name", path.stem), worlds, tuple(runs), tuple(columns), tuple(metrics))
+    return Spec(_name(data.get("name"), path.stem), worlds, tuple(runs), tuple(columns), tuple(metrics))
+
+
+def _name(value, default: str) -> str:
+    """The spec's name: text that names a folder of its own (the default output is ``sweep-NAME``)."""
+    name = checks.text(value, "name", default)
+    if any(c in name for c in "/\\\0"):
+        raise ValueError(f"name must not hold '/', '\\' or a NUL (it names the folder sweep-NAME), got {name!r}")
+    return name
 
 
 def _only(entry: dict, allowed: tuple[str, ...], where: str) -> None:
@@ -192,7 +200,10 @@ def _seeds(value, where: str) -> list[int]:
         first = checks.integer(value.get("first", 0), f"{where}.seeds.first", 0)
         count = checks.integer(value.get("count"), f"{where}.seeds.count", 1, MAX_SEEDS)
         return list(range(first, first + count))
-    return [checks.integer(s, f"{where}.seeds", 0) for s in _listed(value)]
+    seeds = [checks.integer(s, f"{where}.seeds", 0) for s in _listed(value)]
+    if not seeds:
+        raise ValueError(f"{where}.seeds is an empty list: it names no world")
+    return seeds
 
 
 def _file(value, where: str, folder: Path) -> tuple[Path, str]:
@@ -264,21 +275,22 @@ def _map_options(entry: dict, where: str) -> dict:
 
 
 def _named_apart(worlds) -> tuple[World, ...]:
-    """The worlds, those that share a name with a different world renamed ``name#k`` (k: 1, 2, ... in order of
-    first appearance): results are keyed by name, and the oracle's length of one must not be read for the other."""
+    """The worlds, each once (a seed listed twice, or in two entries, is one world), those that share a name with a
+    different world renamed ``name#k`` (k: 1, 2, ... in order of first appearance): results are keyed by name, and
+    the oracle's length of one must not be read for the other."""
     worlds = list(worlds)
     recipes: dict[str, list[dict]] = {}
     for world in worlds:
         same = recipes.setdefault(world.coords["world"], [])
         if world.recipe not in same:
             same.append(world.recipe)
-    out = []
+    out: dict[str, World] = {}
     for world in worlds:
         name, same = world.coords["world"], recipes[world.coords["world"]]
         if len(same) > 1:
             world = World(world.recipe, {**world.coords, "world": f"{name}#{same.index(world.recipe) + 1}"})
-        out.append(world)
-    return tuple(out)
+        out.setdefault(json.dumps([world.recipe, world.coords], sort_keys=True), world)
+    return tuple(out.values())
 
 
 def _cell(value, where: str) -> tuple:
@@ -302,6 +314,9 @@ def _runs(entry, common: dict, where: str) -> tuple[list[tuple[str, dict, int | 
                              f"({', '.join(allowed + ('max_size',))})")
     settings = {**{k: v for k, v in common.items() if k in allowed}, **given}
     names = list(settings)
+    for name in names:
+        if settings[name] == []:
+            raise ValueError(f"{where} ({planner}): {name} is an empty list: it sweeps no value")
     runs = []
     for values in itertools.product(*(_listed(settings[n]) for n in names)):
         try:
