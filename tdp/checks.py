@@ -12,6 +12,7 @@ import os
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 #: A grid cell: (row, col).
 Cell = tuple[int, int]
@@ -34,6 +35,30 @@ def yaml_text_hint(value) -> str:
             return ""
         return f" (YAML reads {value} as text: write it with a dot and a signed exponent, as 1.0e+3)"
     return ""
+
+
+class _UniqueKeys(yaml.SafeLoader):
+    """PyYAML's safe loader, except that a key given twice in one mapping is an error (PyYAML keeps the last)."""
+
+    def construct_mapping(self, node, deep=False):
+        seen = set()
+        for key_node, _ in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                continue
+            key = self.construct_object(key_node, deep=deep)
+            if isinstance(key, (str, int, float, bool)) or key is None:
+                if (type(key), key) in seen:
+                    raise yaml.constructor.ConstructorError(None, None, f"{key!r} is given twice",
+                                                            key_node.start_mark)
+                seen.add((type(key), key))
+        return super().construct_mapping(node, deep)
+
+
+def yaml_data(text: str):
+    """The data of a YAML document of the project's own (a world file, a sweep spec), as ``yaml.safe_load`` reads
+    it, but a key given twice in one mapping - which PyYAML would read as the last one, silently - raises
+    ``yaml.YAMLError`` naming the key and its line."""
+    return yaml.load(text, Loader=_UniqueKeys)
 
 
 def path(value, name: str, kind: str = "file") -> Path:

@@ -50,6 +50,10 @@ _TOP = {"name", "description", "map", "units", "tick_s", "start", "goal", "max_t
 _MAP_FILE = {"file", "unknown_is_free", "threshold", "trinary_costmap", "inflate_m", "cost_scaling_factor",
              "inflation_radius"}
 _MAP_INLINE = {"rows", "cols", "obstacles", "resolution", "origin"}
+#: The top-level keys of one kind of units, each with its counterpart in the other: a file that gives ``max_s`` in
+#: cells would have it ignored.
+_OTHER_UNITS = {"cells": {"max_s": "max_ticks", "change_s": "change_tick"},
+                "metres": {"max_ticks": "max_s", "change_tick": "change_s"}}
 _OBSTACLE = {"cells": {"box", "waypoints", "speed", "appear_at", "vanish_at"},
              "metres": {"box", "waypoints", "speed", "appear_s", "vanish_s"}}
 
@@ -105,7 +109,7 @@ def load_world(path: str | Path) -> Scenario:
     """Read a world file (see the module's documentation) into a Scenario."""
     path = checks.existing_file(checks.path(path, "path"), "world file")
     try:
-        data = yaml.safe_load(path.read_text())
+        data = checks.yaml_data(path.read_text())
     except (yaml.YAMLError, UnicodeDecodeError) as error:
         raise ValueError(f"{path}: not valid YAML ({error})") from None
     read = _Reader(path)
@@ -116,6 +120,9 @@ def load_world(path: str | Path) -> Scenario:
     units = data.get("units", "cells")
     if units not in UNITS:
         read.fail("units", f"expected one of {UNITS}, got {checks.shown(units)}")
+    for key, other in _OTHER_UNITS[units].items():
+        if key in data:
+            read.fail(key, f"a key of the other units (this file's units are {units}: give {other})")
     tick_s = read.number(data.get("tick_s", 0.2), "tick_s", 0.0, strict=True)
     grid, source = _map(read, data["map"], path.parent)
     place = _Placement(read, grid, units, tick_s)
@@ -127,9 +134,10 @@ def load_world(path: str | Path) -> Scenario:
     timing = {"change_tick": place.tick(data, "change_tick", "change_s"),
               "max_ticks": place.tick(data, "max_ticks", "max_s", low=1),
               "blocking": None if data.get("blocking") is None else read.integer(data["blocking"], "blocking")}
+    target_speed = place.speed(target.get("speed", 0.5), "target.speed")
     try:
         return Scenario(grid, cells["start"], cells["goal"], obstacles=obstacles, target_waypoints=waypoints,
-                        target_speed=place.speed(target.get("speed", 0.5), "target.speed"),
+                        target_speed=target_speed,
                         name=checks.text(data.get("name"), "name", path.stem),
                         description=checks.text(data.get("description"), "description", ""),
                         map_source=source, tick_s=tick_s, **timing)

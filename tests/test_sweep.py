@@ -108,6 +108,8 @@ def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
      "budget_ms must be a number, got '1e-1' (YAML reads 1e-1 as text"),
     ("name: {a: 1}\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got {'a': 1}"),
     ("name: .nan\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must be text, got nan"),
+    ("worlds: [{scenario: static}]\nplanners: [{planner: oracle}]\nworlds: [{scenario: clearing}]",
+     "'worlds' is given twice"),
     ("name: ../out\nworlds: [{scenario: static}]\nplanners: [{planner: oracle}]", "name must not hold '/'"),
     ("worlds: [{family: rooms, seeds: []}]\nplanners: [{planner: oracle}]",
      "worlds[0].seeds is an empty list: it names no world"),

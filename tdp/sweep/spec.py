@@ -138,7 +138,7 @@ def load_spec(path: str | Path) -> Spec:
     except (OSError, UnicodeDecodeError) as error:
         raise ValueError(f"sweep spec {path}: cannot read it ({error})") from None
     try:
-        data = yaml.safe_load(text)
+        data = checks.yaml_data(text)
     except yaml.YAMLError as error:
         raise ValueError(f"sweep spec {path}: not valid YAML ({error})") from None
     try:
