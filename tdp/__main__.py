@@ -60,6 +60,7 @@ def plan(args: argparse.Namespace) -> int:
     out = output_folder(args.out)
     grid = map_from(args, unknown_is_free=args.unknown_free)
     start = grid.check_free_cell(tuple(args.start), "--start")
+    grid.check_free_cell(tuple(args.goal), "--goal")
     field = tdp.DistanceField(grid, args.goal, neighbourhood=args.neighbourhood, corner_cutting=args.corner_cutting)
     began = time.perf_counter()
     rounds = field.converge()

@@ -258,6 +258,17 @@ def test_an_output_folder_that_cannot_be_is_refused_before_the_work(tmp_path, co
     assert "running" not in done.stdout and time.perf_counter() - began < 60
 
 
+@pytest.mark.parametrize("start, goal, words", [
+    (("99", "3"), ("9", "9"), "--start (99, 3) is outside the 49 x 49 map"),
+    (("1", "3"), ("99", "0"), "--goal (99, 0) is outside the 49 x 49 map"),
+    (("1", "3"), ("0", "0"), "--goal (0, 0) is on an obstacle"),
+])
+def test_plan_names_the_option_whose_cell_is_wrong(tmp_path, start, goal, words):
+    done = cli("-m", "tdp", "plan", "tests/data/arena.map", "--start", *start, "--goal", *goal, "--out",
+               str(tmp_path))
+    assert done.returncode == 2 and done.stderr.strip() == f"error: {words}"
+
+
 def test_output_folder_is_made_and_checked(tmp_path):
     assert output_folder(tmp_path / "a" / "b").is_dir()
 
