@@ -201,7 +201,9 @@ def occupancy_costmap(values: np.ndarray) -> np.ndarray:
 def _checked_cost(cost, occupied: np.ndarray) -> np.ndarray:
     """``cost`` as a read-only float32 array, 1 on obstacles, or a ValueError naming what is wrong."""
     if not isinstance(cost, np.ndarray) or not np.issubdtype(cost.dtype, np.floating):
-        raise ValueError(f"cost must be a float numpy array, got {getattr(cost, 'dtype', type(cost).__name__)}")
+        raise ValueError(f"cost must be a float numpy array of traversal costs (1 = plain ground), got "
+                         f"{getattr(cost, 'dtype', type(cost).__name__)}; a nav2 costmap's 0-255 values: "
+                         f"tdp.costmap_grid(values)")
     if cost.shape != occupied.shape:
         raise ValueError(f"cost must have the map's shape {occupied.shape}, got {cost.shape}")
     free = cost[~occupied]

@@ -293,7 +293,8 @@ def test_the_exact_planner_drives_the_cheapest_route_on_a_cost_map():
 
 @pytest.mark.parametrize("cost, message", [
     (np.ones((4, 4)), "shape"),
-    (np.ones((4, 5), int), "float"),
+    (np.ones((4, 5), int), "float numpy array of traversal costs .* got int64; a nav2 costmap's 0-255 values: "
+                           "tdp.costmap_grid"),
     ([[1.0] * 5] * 4, "float"),
     (np.full((4, 5), 0.5), "below 1"),
     (np.full((4, 5), np.nan), "NaN"),
