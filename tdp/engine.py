@@ -3805,12 +3805,20 @@ class Engine:
             known[route[-1][0] + PAD, route[-1][1] + PAD] = -1
 
     # -- edits -------------------------------------------------------------------------------------------------
-    def set_cells(self, cells: np.ndarray, occupied: bool | np.ndarray) -> None:
-        """Mark ``cells`` (n, 2) as occupied or free (one bool for them all, or one per cell); only those cells are
-        sent to the kernels. A freed cell costs what the map's ``cost`` says."""
+    def set_cells(self, cells: np.ndarray, occupied: bool | np.ndarray) -> int:
+        """Mark ``cells`` (n, 2) as occupied or free (one bool for them all, or one per cell; a cell listed twice
+        takes the state :attr:`occupied` ends with); only those cells are sent to the kernels, and to the goal layer
+        only those whose state changes (a sensor's window sent again each tick costs its changes, not its size).
+        A freed cell costs what the map's ``cost`` says. Returns the number of cells listed whose state changed."""
         cells, occupied = _edit(cells, occupied)
-        self.occupied[cells[:, 0], cells[:, 1]] = occupied
-        self._paint(self._layers, cells, occupied)
+        where = (cells[:, 0], cells[:, 1])
+        before = self.occupied[where]
+        self.occupied[where] = occupied
+        now = self.occupied[where]
+        changed = before != now
+        self._paint(self._layers[:1], cells[changed], now[changed])
+        self._paint(self._layers[1:], cells, now)
+        return int(np.count_nonzero(changed))
 
     def set_costs(self, cells: np.ndarray, costs) -> None:
         """Set the traversal cost of ``cells`` (n, 2) to ``costs`` (a number or one per cell, 1 to MAX_COST) on a

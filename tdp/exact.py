@@ -121,8 +121,7 @@ class ExactPlanner:
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         flags = checks.flags(occupied, len(cells), "occupied")
         self.moves.freed(cells, flags)
-        self.engine.set_cells(cells, flags)
-        if len(cells):
+        if self.engine.set_cells(cells, flags):
             self._exact_from = ()
 
     def update_costs(self, cells, costs) -> None:

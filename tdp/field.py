@@ -169,11 +169,9 @@ class DistanceField:
 
     def set_occupied(self, cells_or_mask, occupied: bool = True) -> None:
         """Mark cells (a bool mask of the map's shape, or (row, col) cells) as obstacles or, with
-        ``occupied=False``, as free. Only cells whose state changes are sent to the engine."""
+        ``occupied=False``, as free. Only cells whose state changes cost a repair."""
         cells = cells_from(self._grid.shape, cells_or_mask, "set_occupied")
-        occupied = checks.flag(occupied, "occupied")
-        current = self._engine.occupied[cells[:, 0], cells[:, 1]]
-        self._engine.set_cells(cells[current != occupied], occupied)
+        self._engine.set_cells(cells, checks.flag(occupied, "occupied"))
 
     def set_costs(self, cells, costs) -> None:
         """Set the traversal costs of ``cells`` ((row, col) cells, or a bool mask of the map's shape) to ``costs`` (a

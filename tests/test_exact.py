@@ -126,6 +126,46 @@ def test_a_goal_move_into_a_pocket_and_out():
     assert planner.tick().mode == Mode.EXACT
 
 
+def test_a_sensor_window_sent_again_unchanged_costs_no_repair(monkeypatch):
+    """A robot's sensor sends its whole window every tick, mostly as it was: only the cells that change are edits.
+    Sending an unchanged 60 x 60 window made every tick a converge (0.5-0.8 ms against 0.01 on a 300 x 300 map)."""
+    occupied = np.random.default_rng(0).random((80, 80)) < 0.15
+    occupied[0, 0] = occupied[-1, -1] = False
+    planner = tdp.ExactPlanner(tdp.GridMap(occupied), (0, 0), (79, 79))
+    planner.setup()
+    planner.move_robot(planner.tick().next_cell)
+    converges = []
+    monkeypatch.setattr(planner.engine, "converge", lambda **kw: converges.append(kw))
+    window = np.zeros(occupied.shape, bool)
+    window[:40, :40] = True
+    for _ in range(3):
+        planner.update_map(window & occupied, True)
+        planner.update_map(window & ~occupied, False)
+        planner.move_robot(planner.tick().next_cell)
+    assert not converges
+    planner.update_map(window & ~occupied & (np.arange(80) == 39)[None, :], True)  # a real change
+    planner.tick()
+    assert len(converges) == 1
+
+
+def test_a_cell_listed_twice_in_one_update_ends_as_the_map_says(monkeypatch):
+    """set_cells paints the goal layer with the cells whose state changes, each with the state the map ends with:
+    a cell blocked and freed in one call, or freed and blocked, leaves the layer as a fresh converge of that map."""
+    occupied = np.zeros((20, 20), bool)
+    occupied[10, :18] = True
+    grid = tdp.GridMap(occupied)
+    planner = tdp.ExactPlanner(grid, (0, 0), (19, 0))
+    planner.setup()
+    cells = np.array([(10, 3), (10, 3), (5, 5), (5, 5), (10, 18), (10, 19)])
+    changed = planner.engine.set_cells(cells, np.array([False, True, True, False, True, False]))
+    final = planner.engine.occupied.copy()  # which of a cell's two states numpy's assignment keeps is numpy's
+    assert final[10, 18] and not final[10, 19] and changed == 1 + 2 * (not final[10, 3]) + 2 * final[5, 5]
+    planner.engine.converge()
+    fresh = tdp.DistanceField(tdp.GridMap(final), (19, 0))
+    fresh.converge()
+    assert np.array_equal(planner.engine.goal_distances(), fresh.distances())
+
+
 STENCILS = [(4, False), (8, False), (8, True), (16, False), (16, True)]
 
 
