@@ -3589,20 +3589,19 @@ def _joined(edits: list[tuple[np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.
     return _cells_array(cells), penalties
 
 
-def _changed_costs(current: np.ndarray | None, cells: np.ndarray, costs) -> tuple[np.ndarray, np.ndarray]:
-    """The ``cells`` whose cost ``costs`` (a number or one per cell) changes from ``current`` (the map's costs), and
-    their new costs (float32); a ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
+def _checked_costs(current: np.ndarray | None, count: int, costs) -> np.ndarray:
+    """``costs`` (a number or one per cell) as ``count`` float32 costs of a map whose costs are ``current``; a
+    ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
     if current is None:
         raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
     try:
-        costs = np.broadcast_to(np.asarray(costs, np.float64), (len(cells),))
+        costs = np.broadcast_to(np.asarray(costs, np.float64), (count,))
     except (TypeError, ValueError):
-        raise ValueError(f"costs must be a number or one per cell ({len(cells)}), got {np.shape(costs)}") from None
+        raise ValueError(f"costs must be a number or one per cell ({count}), got {np.shape(costs)}") from None
     wrong = ~((costs >= 1) & (costs <= MAX_COST))  # NaN is wrong too
     if wrong.any():
         raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {costs[wrong][0]}")
-    changed = current[cells[:, 0], cells[:, 1]] != costs.astype(np.float32)
-    return cells[changed], costs[changed].astype(np.float32)
+    return costs.astype(np.float32)
 
 
 def _edit(cells, occupied) -> tuple[np.ndarray, bool | np.ndarray]:
@@ -3820,17 +3819,24 @@ class Engine:
         self._paint(self._layers[1:], cells, now)
         return int(np.count_nonzero(changed))
 
-    def set_costs(self, cells: np.ndarray, costs) -> None:
+    def set_costs(self, cells: np.ndarray, costs) -> int:
         """Set the traversal cost of ``cells`` (n, 2) to ``costs`` (a number or one per cell, 1 to MAX_COST) on a
-        map with costs (an occupied cell keeps it for when it is freed); the goal layer repairs as after an edit.
+        map with costs (an occupied cell keeps it for when it is freed; a cell listed twice takes the cost
+        :attr:`cost` ends with); the goal layer repairs as after an edit, for the free cells whose cost changed.
+        Returns their number.
 
         Raises:
             ValueError: the engine was built without costs, or a cost is not a number from 1 to MAX_COST.
         """
-        cells, costs = _changed_costs(self.cost, _cells_array(cells), costs)
-        self.cost[cells[:, 0], cells[:, 1]] = costs
-        free = ~self.occupied[cells[:, 0], cells[:, 1]]
-        self._goal.reprice(cells[free], costs[free])
+        cells = _cells_array(cells)
+        costs = _checked_costs(self.cost, len(cells), costs)
+        where = (cells[:, 0], cells[:, 1])
+        before = self.cost[where]
+        self.cost[where] = costs
+        now = self.cost[where]
+        repriced = (before != now) & ~self.occupied[where]
+        self._goal.reprice(cells[repriced], now[repriced])
+        return int(np.count_nonzero(repriced))
 
     def set_node_cells(self, cells: np.ndarray, occupied: np.ndarray) -> None:
         """Mark ``cells`` occupied or free in the node layers only (e.g. cells a box is predicted to enter); the goal

@@ -127,9 +127,7 @@ class ExactPlanner:
     def update_costs(self, cells, costs) -> None:
         """Set the traversal costs of ``cells`` (a mask or (row, col) cells) to ``costs`` (a number or one per cell)
         on a map with costs (:meth:`tdp.engine.Engine.set_costs`)."""
-        cells = cells_from(self.grid.shape, cells, "update_costs")
-        self.engine.set_costs(cells, costs)
-        if len(cells):
+        if self.engine.set_costs(cells_from(self.grid.shape, cells, "update_costs"), costs):
             self._exact_from = ()
 
     def set_goal(self, goal: tuple[int, int]) -> None:

@@ -148,6 +148,34 @@ def test_a_sensor_window_sent_again_unchanged_costs_no_repair(monkeypatch):
     assert len(converges) == 1
 
 
+def test_costs_sent_again_unchanged_cost_no_repair_and_a_cell_listed_twice_ends_as_the_costs_say(monkeypatch):
+    """A costmap window sent again each tick: only the free cells whose cost changes reprice the goal layer; a cell
+    given two costs in one call leaves the layer as a fresh converge of the costs the engine ends with."""
+    rng = np.random.default_rng(1)
+    occupied = rng.random((40, 40)) < 0.1
+    occupied[0, 0] = occupied[-1, -1] = False
+    cost = rng.uniform(1, 5, occupied.shape)
+    planner = tdp.ExactPlanner(tdp.GridMap(occupied, cost=cost), (0, 0), (39, 39))
+    planner.setup()
+    planner.move_robot(planner.tick().next_cell)
+    converges = []
+    converge = planner.engine.converge
+    monkeypatch.setattr(planner.engine, "converge", lambda **kw: converges.append(kw) or converge(**kw))
+    window = [(r, c) for r in range(20) for c in range(20)]
+    planner.update_costs(window, cost[tuple(np.transpose(window))].astype(np.float32))
+    planner.update_costs([w for w in window if occupied[w]], 4.0)  # obstacles' costs: kept for when freed
+    planner.move_robot(planner.tick().next_cell)
+    assert not converges
+    free = [w for w in window if not occupied[w]][:3]
+    back = float(planner.engine.cost[free[0]])  # free[0] priced anew, then back as it was: the map is unchanged there
+    planner.update_costs(free + free, [2.0, 2.5, 3.0, back, 1.0, 3.0])
+    planner.tick()
+    assert len(converges) == 1
+    fresh = tdp.DistanceField(tdp.GridMap(occupied, cost=planner.engine.cost.astype(np.float64)), (39, 39))
+    fresh.converge()
+    assert np.array_equal(planner.engine.goal_distances(), fresh.distances())
+
+
 def test_a_cell_listed_twice_in_one_update_ends_as_the_map_says(monkeypatch):
     """set_cells paints the goal layer with the cells whose state changes, each with the state the map ends with:
     a cell blocked and freed in one call, or freed and blocked, leaves the layer as a fresh converge of that map."""
