@@ -3806,17 +3806,17 @@ class Engine:
     # -- edits -------------------------------------------------------------------------------------------------
     def set_cells(self, cells: np.ndarray, occupied: bool | np.ndarray) -> int:
         """Mark ``cells`` (n, 2) as occupied or free (one bool for them all, or one per cell; a cell listed twice
-        takes the state :attr:`occupied` ends with); only those cells are sent to the kernels, and to the goal layer
-        only those whose state changes (a sensor's window sent again each tick costs its changes, not its size).
-        A freed cell costs what the map's ``cost`` says. Returns the number of cells listed whose state changed."""
+        takes the state :attr:`occupied` ends with); of those, only the cells whose state changes are sent to the
+        kernels (a sensor's window sent again each tick costs its changes, not its size; a node layer's cell held
+        occupied by :meth:`set_node_cells` stays so while the map's cell stays free). A freed cell costs what the
+        map's ``cost`` says. Returns the number of cells listed whose state changed."""
         cells, occupied = _edit(cells, occupied)
         where = (cells[:, 0], cells[:, 1])
         before = self.occupied[where]
         self.occupied[where] = occupied
         now = self.occupied[where]
         changed = before != now
-        self._paint(self._layers[:1], cells[changed], now[changed])
-        self._paint(self._layers[1:], cells, now)
+        self._paint(self._layers, cells[changed], now[changed])
         return int(np.count_nonzero(changed))
 
     def set_costs(self, cells: np.ndarray, costs) -> int:

@@ -88,7 +88,8 @@ class Navigator:
         self.moves.freed(cells, flags)
         if self.lookout:
             self.lookout.note_update(cells, flags)
-        self.engine.set_cells(cells, flags)
+        if not self.engine.set_cells(cells, flags):
+            return
         if self.lookout:
             self.lookout.hold(cells)
         self.readings.edited()
