@@ -151,6 +151,31 @@ def test_the_goal_layer_never_sees_a_prediction():
     assert len(predicting.lookout.predictor.tracks) > 0
 
 
+def test_a_whole_map_sent_again_each_tick_changes_no_layer_and_no_prediction():
+    """A navigator fed the whole map every tick (a sensor's view, mostly as it was) against one fed the changes: the
+    same node layers, goal layer and moves at every tick - prediction's held cells included (a map cell sent again as
+    free must not free a node layer's cell held occupied)."""
+    scenario = make_world("crossing", 60, 1)
+    grid = tdp.GridMap(scenario.occupancy(0))
+    config = tdp.NavigatorConfig(planner="accelerating", predict_ticks=6, updates_per_move=2)
+    fed, resent = (tdp.Navigator(grid, scenario.start, scenario.goal, config) for _ in range(2))
+    feed = WorldFeed(scenario.occupancy(0), scenario.goal)
+    everything = np.ones(grid.shape, bool)
+    for navigator in (fed, resent):
+        navigator.setup()
+    for tick in range(1, 30):
+        feed.update(fed, scenario.occupancy(tick), scenario.goal)
+        resent.update_map(everything, scenario.occupancy(tick)[everything])
+        moves = [navigator.tick().next_cell for navigator in (fed, resent)]
+        assert moves[0] == moves[1]
+        for navigator in (fed, resent):
+            navigator.move_robot(moves[0] or navigator.robot)
+        np.testing.assert_array_equal(fed.engine.goal_distances(), resent.engine.goal_distances())
+        cells = np.argwhere(everything)
+        np.testing.assert_array_equal(fed.engine.sample(cells), resent.engine.sample(cells))
+    assert fed.lookout.predicted.any() and np.array_equal(fed.lookout.predicted, resent.lookout.predicted)
+
+
 def test_avoiding_boxes_keeps_the_robot_out_of_their_way():
     """cluttered-100-0 at K = 4: a sliding box drives onto the robot and sits on it for 26 ticks; with avoid_boxes
     the robot yields or steps aside and is never hit, and reaches the goal."""
