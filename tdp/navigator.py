@@ -97,8 +97,8 @@ class Navigator:
 
     def update_costs(self, cells, costs) -> None:
         """Set the goal layer's traversal costs of ``cells`` (a mask or cells) to ``costs`` (node layers: cells)."""
-        self.engine.set_costs(cells_from(self.grid.shape, cells, "update_costs"), costs)
-        self.readings.edited()
+        if self.engine.set_costs(cells_from(self.grid.shape, cells, "update_costs"), costs):
+            self.readings.edited()
 
     def set_goal(self, goal: Cell) -> None:
         """Move the target (moving-target scenarios). The goal may be on an obstacle (a moving target may cross
