@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -88,12 +89,13 @@ def plan(args: argparse.Namespace) -> int:
 def sweep(args: argparse.Namespace) -> int:
     """Run a sweep spec's episodes not yet done, then write its tables and figure into --out."""
     from tdp.cli import output_folder
-    from tdp.sweep import JOURNAL, Journal, load_spec, run_sweep, write_report
+    from tdp.sweep import JOURNAL, Journal, load_spec, local_workers, run_sweep, write_report
 
     spec = load_spec(args.spec)
     if args.workers is not None and (args.workers < 1 or args.serial or args.scheduler):
         raise ValueError(f"--workers {args.workers}: a positive number of local workers, without --serial or "
                          "--scheduler")
+    local_workers(args.workers, os.cpu_count() or 1, 1)  # too many fails before the output folder is made
     out = output_folder(args.out or f"sweep-{spec.name}")
     episodes = spec.episodes()
     where = "serially" if args.serial else f"on {args.scheduler or 'a local cluster'}"

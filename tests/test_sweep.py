@@ -4,6 +4,7 @@ import csv
 import io
 import json
 import math
+import re
 import signal
 import subprocess
 import sys
@@ -13,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from tdp.__main__ import main as tdp_command
-from tdp.sweep import JOURNAL, TIMED, Journal, load_spec, run_sweep, write_report
+from tdp.sweep import JOURNAL, TIMED, Journal, load_spec, local_workers, run_sweep, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -123,6 +124,24 @@ def test_a_bad_spec_is_a_value_error_naming_the_file_and_the_entry(tmp_path, tex
     with pytest.raises(ValueError, match="sweep spec") as caught:
         load_spec(path)
     assert words in str(caught.value) and str(path) in str(caught.value)
+
+
+@pytest.mark.parametrize("asked, cores, episodes, workers", [
+    (None, 2, 200, 2), (None, 16, 3, 3), (3, 2, 200, 3), (8, 2, 200, 8), (5, 2, 2, 2), (None, 2, 0, 1)])
+def test_a_local_cluster_has_the_workers_asked_or_one_a_core_and_no_more_than_episodes(asked, cores, episodes,
+                                                                                        workers):
+    assert local_workers(asked, cores, episodes) == workers
+
+
+@pytest.mark.parametrize("asked, words", [(9, "workers: at most 8 on this machine's 2 cores (4 a core), got 9"),
+                                          (0, "workers must be an integer >= 1"), (2.5, "workers must be an integer")])
+def test_a_local_cluster_of_more_workers_than_four_a_core_is_refused(tmp_path, asked, words):
+    """--workers 1000 on the 2-core VM started 1000 processes that each load Taichi, until memory ran out."""
+    with pytest.raises(ValueError, match=re.escape(words)):
+        local_workers(asked, 2, 100)
+    with pytest.raises(ValueError, match="workers"):
+        run_sweep(load_spec(spec_file(tmp_path, SMALL)), tmp_path / "out", workers=10_000)
+    assert not (tmp_path / "out").exists()
 
 
 def test_bad_spec_on_the_command_line_is_one_error_line(tmp_path):

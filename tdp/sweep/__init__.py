@@ -10,8 +10,8 @@ spec's format.
 """
 from .episode import TIMED, measure_episode
 from .report import write_report
-from .run import JOURNAL, Journal, run_sweep
+from .run import JOURNAL, Journal, local_workers, run_sweep
 from .spec import EpisodeSpec, Spec, World, load_spec
 
-__all__ = ["EpisodeSpec", "JOURNAL", "Journal", "Spec", "TIMED", "World", "load_spec", "measure_episode", "run_sweep",
-           "write_report"]
+__all__ = ["EpisodeSpec", "JOURNAL", "Journal", "Spec", "TIMED", "World", "load_spec", "local_workers",
+           "measure_episode", "run_sweep", "write_report"]

@@ -17,6 +17,9 @@ from .episode import measure_episode
 from .spec import EpisodeSpec, Spec
 
 JOURNAL = "episodes.jsonl"
+#: The most worker processes a local cluster may have per core: each runs one episode at a time, so more only queue,
+#: and each is a process that holds Taichi and its kernels.
+MAX_WORKERS_PER_CORE = 4
 
 
 class Journal:
@@ -128,17 +131,34 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int 
     journal already holds and errors go to ``log`` (default: ``sys.stderr`` as it is at the call).
 
     Raises:
-        ValueError: ``out`` is no path (a str or a pathlib.Path).
+        ValueError: ``out`` is no path (a str or a pathlib.Path), or ``workers`` is not a count a local cluster
+            can run (:func:`local_workers`).
     """
-    journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)  # its log: ``log``, else sys.stderr now
     episodes = spec.episodes()
+    count = local_workers(workers, os.cpu_count() or 1, len(episodes))
+    journal = Journal(checks.path(out, "out", "folder") / JOURNAL, log)  # its log: ``log``, else sys.stderr now
     todo = [e for e in episodes if e.key not in journal.rows]
     progress = Progress(len(episodes), len(episodes) - len(todo), journal.log)
     if todo:
-        for episode, row, error in _serially(todo) if serial else _on_dask(todo, scheduler, workers):
+        local = min(count, len(todo))
+        for episode, row, error in _serially(todo) if serial else _on_dask(todo, scheduler, local):
             journal.add(episode.key, row, error)
             progress(episode, error)
     return journal.rows_of(episodes)
+
+
+def local_workers(asked: int | None, cores: int, episodes: int) -> int:
+    """The worker processes of a local cluster for ``episodes`` episodes on ``cores`` cores: ``asked`` (default one
+    per core), no more than there are episodes (a worker is a process that loads Taichi and its kernels before its
+    first episode). A ValueError where ``asked`` is not a positive integer or is more than MAX_WORKERS_PER_CORE a
+    core: each worker runs one episode at a time, so more only queue, while each holds its own process in memory."""
+    if asked is not None:
+        most = MAX_WORKERS_PER_CORE * cores
+        checks.integer(asked, "workers", 1)
+        if asked > most:
+            raise ValueError(f"workers: at most {most} on this machine's {cores} cores "
+                             f"({MAX_WORKERS_PER_CORE} a core), got {asked}")
+    return max(1, min(asked or cores, episodes))
 
 
 def _serially(episodes: list[EpisodeSpec]) -> Iterable[tuple[EpisodeSpec, dict | None, str | None]]:
@@ -150,7 +170,8 @@ def _serially(episodes: list[EpisodeSpec]) -> Iterable[tuple[EpisodeSpec, dict |
 
 
 def _on_dask(episodes: list[EpisodeSpec], scheduler: str | None,
-             workers: int | None) -> Iterable[tuple[EpisodeSpec, dict | None, str | None]]:
+             workers: int) -> Iterable[tuple[EpisodeSpec, dict | None, str | None]]:
+    """Each episode's result on the cluster at ``scheduler``, or on a local cluster of ``workers`` processes."""
     try:
         from dask.distributed import Client, LocalCluster, as_completed
     except ImportError:
@@ -158,10 +179,9 @@ def _on_dask(episodes: list[EpisodeSpec], scheduler: str | None,
             from None
     cluster = None
     if scheduler is None:
-        cores = os.cpu_count() or 1
-        count = workers or cores
-        cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True, dashboard_address=None,
-                               silence_logs=logging.ERROR, env={"TDP_THREADS": str(max(1, cores // count))})
+        threads = max(1, (os.cpu_count() or 1) // workers)
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                               silence_logs=logging.ERROR, env={"TDP_THREADS": str(threads)})
     try:
         with Client(cluster or scheduler) as client:
             futures = client.map(measure_episode, episodes, key=[f"tdp-episode-{e.key}" for e in episodes])
