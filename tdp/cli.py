@@ -1,5 +1,6 @@
-"""Running a command line: argparse, then the chosen command, with bad input reported in one line; output folders
-checked before the work starts, and results that cannot be written where asked saved elsewhere, never lost."""
+"""Running a command line: argparse, then the chosen command, with bad input and warnings reported in one line each;
+output folders checked before the work starts, and results that cannot be written where asked saved elsewhere, never
+lost."""
 from __future__ import annotations
 
 import argparse
@@ -7,14 +8,18 @@ import json
 import math
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 
 
 def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
     """Parse ``argv`` and run the command it names (``args.run(args)``). Bad input and failed file operations
     (ValueError, OSError such as FileNotFoundError or PermissionError) become ``error: ...`` on stderr and exit
-    code 2; Ctrl-C exits with 130. Any other exception is a bug of tdp's and keeps its traceback."""
+    code 2, and a warning ``warning: ...`` (Python's format adds the file, line and source line of the call that
+    warned); Ctrl-C exits with 130. Any other exception is a bug of tdp's and keeps its traceback."""
     args = parser.parse_args(argv)
+    formatted = warnings.formatwarning
+    warnings.formatwarning = _one_line
     try:
         return args.run(args)
     except (ValueError, OSError) as error:
@@ -23,6 +28,13 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
         return 130
+    finally:
+        warnings.formatwarning = formatted
+
+
+def _one_line(message, category, filename, lineno, line=None) -> str:
+    """A warning as a command line prints it (``warnings.formatwarning``'s signature)."""
+    return f"warning: {message}\n"
 
 
 #: (argparse destination, flag) of the options that shape a quick world on ``--map`` only, and of the cost options.

@@ -269,6 +269,15 @@ def test_plan_names_the_option_whose_cell_is_wrong(tmp_path, start, goal, words)
     assert done.returncode == 2 and done.stderr.strip() == f"error: {words}"
 
 
+def test_a_command_lines_warning_is_one_line(tmp_path):
+    """Python's format printed the warning with the file, line and source of the call that warned."""
+    done = cli("-m", "sim", "run", "--map", "tests/data/arena.map", "--start", "1", "3", "--goal", "1", "4", "--boxes",
+               "0", "--margin", "0.5", "--out", str(tmp_path))
+    warned = [line for line in done.stderr.splitlines() if "margin_m 0.5" in line]
+    assert done.returncode == 0 and len(warned) == 1 and warned[0].startswith("warning: margin_m 0.5 is less than")
+    assert "UserWarning" not in done.stderr and "run_episode(" not in done.stderr
+
+
 def test_output_folder_is_made_and_checked(tmp_path):
     assert output_folder(tmp_path / "a" / "b").is_dir()
 
