@@ -32,6 +32,15 @@ def _read_cells(cells) -> np.ndarray:
     return np.asarray(cells)
 
 
+def _mask_cells(mask: np.ndarray) -> np.ndarray:
+    """The (row, col) cells of a 2-D bool mask, row by row, as an (n, 2) int32 array: ``np.argwhere``'s, found as
+    flat indices (numpy's 2-D nonzero took 0.2 ms for a 300 x 300 mask where the flat one takes 0.02)."""
+    flat = np.flatnonzero(mask)
+    cells = np.empty((len(flat), 2), np.int32)
+    cells[:, 0], cells[:, 1] = np.divmod(flat, mask.shape[1])
+    return cells
+
+
 def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndarray:
     """An (n, 2) int32 array of (row, col) cells, contiguous (as the engine's kernels take them), from a bool mask of
     the map's shape or a sequence of cells.
@@ -46,7 +55,7 @@ def cells_from(grid_shape: tuple[int, int], cells_or_mask, name: str) -> np.ndar
     if array.dtype == bool:
         if array.shape != grid_shape:
             raise ValueError(f"{name}: a mask must have the map's shape {grid_shape}, got {array.shape}")
-        return np.argwhere(array).astype(np.int32)
+        return _mask_cells(array)
     if array.size == 0:
         return np.zeros((0, 2), np.int32)
     if array.dtype.kind not in "iu" or array.ndim == 0 or array.shape[-1] != 2:
