@@ -45,6 +45,17 @@ def test_named_scenarios(name):
     assert ours["trajectory"] == reference["trajectory"] and ours["reached"]
 
 
+@pytest.mark.parametrize("family", FAMILIES)
+def test_a_familys_worlds_look_alike_at_every_size(family):
+    """Sizes in cells scale with the side, so a family's obstacle share holds from 100 to 1,000 cells a side and its
+    boxes still fit: the clutter's count grew with the area while its pieces grew with the side, so cluttered worlds
+    were 68 % obstacles at 500 with no room for a box, and clearing worlds of 1,500 could not be drawn."""
+    worlds = {size: make_world(family, size, 3) for size in (100, 400, 1000)}
+    shares = [w.grid.occupied.mean() for w in worlds.values()]
+    assert max(shares) <= 2.5 * min(shares) + 0.03, shares  # the draws differ; the old scaling: 0.04 -> 0.35 at 400
+    assert all(len(w.obstacles) >= 1 for w in worlds.values())
+
+
 def test_a_quick_world_on_a_movingai_map():
     grid = tdp.load_map("tests/data/arena.map")
     ours, reference = both(boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=3, blockage=True))

@@ -16,6 +16,7 @@ from tdp.random_worlds import make_world
 from tdp.search import uniform_cost_search
 from tdp.stencil import _depths, _Legs, _Window, escape_move
 
+from conftest import DATA
 from reference import distances_to, escape_depths, escape_totals
 
 DEFAULT = tdp.NavigatorConfig(planner="accelerating")
@@ -300,11 +301,12 @@ def test_leaving_a_backup_by_evidence_takes_a_settled_route_to_the_goal(seed):
 
 
 def test_a_route_lengthened_by_boxes_far_ahead_starts_no_backup():
-    """cluttered-200-4 at K = 1: a justified detection, while the goal layer's value at R is within 1.4 cells of the
-    exact distance but its successors' route runs 20 cells longer round boxes that moved far ahead. Asking that
-    route to be settled before a backup starts made the robot follow one for 78 ticks (1.093 against plain DP's
-    1.017); the whole-route test is asked only when leaving a backup."""
-    scenario = make_world("cluttered", 200, 4)
+    """cluttered-200-4 at K = 1 as the generator drew it before its clutter's density stopped growing with the
+    map's side (tests/data/cluttered-200-4.yaml): a justified detection, while the goal layer's value at R is within
+    1.4 cells of the exact distance but its successors' route runs 20 cells longer round boxes that moved far ahead.
+    Asking that route to be settled before a backup starts made the robot follow one for 78 ticks (1.093 against
+    plain DP's 1.017); the whole-route test is asked only when leaving a backup."""
+    scenario = tdp.load_world(DATA / "cluttered-200-4.yaml")
     config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1)
     accelerating = tdp.simulate(scenario, config)
     plain = tdp.simulate(scenario, tdp.NavigatorConfig(updates_per_move=1, planner="plain-dp"))

@@ -219,7 +219,7 @@ def _file(value, where: str, folder: Path) -> tuple[Path, str]:
 def _worlds(entry, where: str, folder: Path) -> list[World]:
     """The worlds of one entry of ``worlds``, checked (families and sizes by name, files by loading them)."""
     import tdp
-    from ..random_worlds import FAMILIES
+    from ..random_worlds import FAMILIES, GENERATION
 
     if not isinstance(entry, dict) or sum(k in entry for k in WORLD_KINDS) != 1:
         raise ValueError(f"{where}: a mapping with exactly one of {', '.join(WORLD_KINDS)}")
@@ -231,7 +231,7 @@ def _worlds(entry, where: str, folder: Path) -> list[World]:
             if family not in FAMILIES:
                 raise ValueError(f"{where}: unknown family {family!r}; choose one of {', '.join(FAMILIES)}")
         sizes = [checks.integer(s, f"{where}.size", 60, MAX_MAP_SIDE) for s in _listed(entry.get("size", 100))]
-        return [World({"kind": kind, "family": family, "size": size, "seed": seed},
+        return [World({"kind": kind, "family": family, "size": size, "seed": seed, "generation": GENERATION},
                       {"world": f"{family}-{size}-{seed}", "group": family, "size": size, "seed": seed})
                 for family in families for size in sizes for seed in _seeds(entry.get("seeds", 0), where)]
     if kind == "scenario":
