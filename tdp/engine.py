@@ -3604,6 +3604,16 @@ def _checked_costs(current: np.ndarray | None, count: int, costs) -> np.ndarray:
     return costs.astype(np.float32)
 
 
+def _assigned(array: np.ndarray, cells: np.ndarray, values) -> tuple[np.ndarray, np.ndarray]:
+    """Write ``values`` into the map-shaped ``array`` at ``cells`` (n, 2); return what it holds there now (of a cell
+    listed twice, the value numpy's assignment kept) and where that differs from what it held before."""
+    where = (cells[:, 0], cells[:, 1])
+    before = array[where]
+    array[where] = values
+    now = array[where]
+    return now, before != now
+
+
 def _edit(cells, occupied) -> tuple[np.ndarray, bool | np.ndarray]:
     """Cells as kernels take them and their occupancy: one flag for them all (True or False), or one per cell."""
     cells = _cells_array(cells)
@@ -3811,11 +3821,7 @@ class Engine:
         occupied by :meth:`set_node_cells` stays so while the map's cell stays free). A freed cell costs what the
         map's ``cost`` says. Returns the number of cells listed whose state changed."""
         cells, occupied = _edit(cells, occupied)
-        where = (cells[:, 0], cells[:, 1])
-        before = self.occupied[where]
-        self.occupied[where] = occupied
-        now = self.occupied[where]
-        changed = before != now
+        now, changed = _assigned(self.occupied, cells, occupied)
         self._paint(self._layers, cells[changed], now[changed])
         return int(np.count_nonzero(changed))
 
@@ -3829,12 +3835,8 @@ class Engine:
             ValueError: the engine was built without costs, or a cost is not a number from 1 to MAX_COST.
         """
         cells = _cells_array(cells)
-        costs = _checked_costs(self.cost, len(cells), costs)
-        where = (cells[:, 0], cells[:, 1])
-        before = self.cost[where]
-        self.cost[where] = costs
-        now = self.cost[where]
-        repriced = (before != now) & ~self.occupied[where]
+        now, changed = _assigned(self.cost, cells, _checked_costs(self.cost, len(cells), costs))
+        repriced = changed & ~self.occupied[cells[:, 0], cells[:, 1]]
         self._goal.reprice(cells[repriced], now[repriced])
         return int(np.count_nonzero(repriced))
 
