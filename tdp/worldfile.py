@@ -50,10 +50,6 @@ _TOP = {"name", "description", "map", "units", "tick_s", "start", "goal", "max_t
 _MAP_FILE = {"file", "unknown_is_free", "threshold", "trinary_costmap", "inflate_m", "cost_scaling_factor",
              "inflation_radius"}
 _MAP_INLINE = {"rows", "cols", "obstacles", "resolution", "origin"}
-#: The top-level keys of one kind of units, each with its counterpart in the other: a file that gives ``max_s`` in
-#: cells would have it ignored.
-_OTHER_UNITS = {"cells": {"max_s": "max_ticks", "change_s": "change_tick"},
-                "metres": {"max_ticks": "max_s", "change_tick": "change_s"}}
 _OBSTACLE = {"cells": {"box", "waypoints", "speed", "appear_at", "vanish_at"},
              "metres": {"box", "waypoints", "speed", "appear_s", "vanish_s"}}
 
@@ -120,9 +116,6 @@ def load_world(path: str | Path) -> Scenario:
     units = data.get("units", "cells")
     if units not in UNITS:
         read.fail("units", f"expected one of {UNITS}, got {checks.shown(units)}")
-    for key, other in _OTHER_UNITS[units].items():
-        if key in data:
-            read.fail(key, f"a key of the other units (this file's units are {units}: give {other})")
     tick_s = read.number(data.get("tick_s", 0.2), "tick_s", 0.0, strict=True)
     grid, source = _map(read, data["map"], path.parent)
     place = _Placement(read, grid, units, tick_s)
@@ -232,6 +225,11 @@ class _Placement:
         return speed if self.units == "cells" else speed * self.tick_s / self.grid.resolution
 
     def tick(self, data: dict, tick_key: str, seconds_key: str, low: int = 0) -> int | None:
+        """A time given as ``tick_key`` in cells or ``seconds_key`` in metres, in ticks; the other units' key is an
+        error (it would be ignored)."""
+        given, other = (tick_key, seconds_key) if self.units == "cells" else (seconds_key, tick_key)
+        if other in data:
+            self.read.fail(other, f"a key of the other units (this file's units are {self.units}: give {given})")
         if self.units == "cells":
             return None if data.get(tick_key) is None else self.read.integer(data[tick_key], tick_key, low)
         if data.get(seconds_key) is None:
@@ -243,7 +241,6 @@ class _Placement:
         if "box" not in spec:
             self.read.fail(f"{key}.box", "missing")
         box_m = None if self.units == "cells" else self.read.quad(spec["box"], f"{key}.box", "metres")
-        times = ("appear_at", "vanish_at") if self.units == "cells" else ("appear_s", "vanish_s")
         box = self.box(spec["box"], f"{key}.box")
         waypoints = [self.corner(w, f"{key}.waypoints[{i}]", box_m)
                      for i, w in enumerate(_list(self.read, spec, "waypoints", f"{key}."))]
@@ -253,8 +250,8 @@ class _Placement:
                                                  f"{self.grid.shape[1]} map there (top-left cell {(r, c)})")
         try:
             return Obstacle(box=box, waypoints=waypoints, speed=self.speed(spec.get("speed", 0.5), f"{key}.speed"),
-                            appear_at=self.tick(spec, "appear_at", times[0]),
-                            vanish_at=self.tick(spec, "vanish_at", times[1]))
+                            appear_at=self.tick(spec, "appear_at", "appear_s"),
+                            vanish_at=self.tick(spec, "vanish_at", "vanish_s"))
         except ValueError as error:
             if str(error).startswith(str(self.read.path)):
                 raise
