@@ -65,8 +65,7 @@ class SimConfig:
             value = getattr(self, name)
             if value is None and name in optional:
                 continue
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+            checks.number(value, name, 0.0)
         for name in ("physics_hz", "control_hz", "frame_every"):
             checks.integer(getattr(self, name), name, 1)
         if self.physics_hz % self.control_hz:

@@ -3594,9 +3594,12 @@ def _checked_costs(current: np.ndarray | None, count: int, costs) -> np.ndarray:
     ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
     if current is None:
         raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
+    given = np.asarray(costs)
+    if given.dtype.kind not in "iuf":  # numpy would read "2" and True as costs
+        raise ValueError(f"costs must be a number or one per cell ({count}), got {checks.shown(costs)}")
     try:
-        costs = np.broadcast_to(np.asarray(costs, np.float64), (count,))
-    except (TypeError, ValueError):
+        costs = np.broadcast_to(given.astype(np.float64), (count,))
+    except ValueError:
         raise ValueError(f"costs must be a number or one per cell ({count}), got {np.shape(costs)}") from None
     wrong = ~((costs >= 1) & (costs <= MAX_COST))  # NaN is wrong too
     if wrong.any():

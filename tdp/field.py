@@ -12,9 +12,7 @@ from .grid import GridMap
 
 def check_cap(value: float, name: str) -> float:
     """Return ``value`` as a float if it is a positive number (inf allowed), else raise ValueError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value) or value <= 0:
-        raise ValueError(f"{name} must be a positive number (inf allowed), got {value!r}")
-    return float(value)
+    return checks.number(value, name, 0.0, inclusive=False, finite=False)
 
 
 def _read_cells(cells) -> np.ndarray:

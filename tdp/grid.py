@@ -56,8 +56,7 @@ class GridMap:
             raise ValueError(f"occupied must be a non-empty 2-D array, got shape {occupied.shape}")
         if occupied.dtype != bool:
             raise ValueError(f"occupied must be a bool array (True = obstacle), got dtype {occupied.dtype}")
-        if not (isinstance(resolution, (int, float)) and math.isfinite(resolution) and resolution > 0):
-            raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+        resolution = checks.number(resolution, "resolution (metres per cell)", 0.0, inclusive=False)
         if not (isinstance(origin, (tuple, list, np.ndarray)) and len(origin) in (2, 3) and all(
                 isinstance(v, numbers.Real) and not isinstance(v, bool) and math.isfinite(v) for v in origin)):
             raise ValueError(f"origin must be finite (x, y) or (x, y, yaw), got {checks.shown(origin)}")
@@ -102,8 +101,7 @@ class GridMap:
         Raises:
             ValueError: a radius or factor that is not a finite number >= 0, or only one of the two cost parameters.
         """
-        if not (isinstance(radius_cells, (int, float)) and math.isfinite(radius_cells) and radius_cells >= 0):
-            raise ValueError(f"radius_cells must be a finite number >= 0, got {radius_cells!r}")
+        radius_cells = checks.number(radius_cells, "radius_cells", 0.0)
         if (cost_scaling_factor is None) != (inflation_radius is None):
             raise ValueError("cost_scaling_factor and inflation_radius go together (nav2's inflation layer); got "
                              f"{cost_scaling_factor!r} and {inflation_radius!r}")
@@ -206,7 +204,7 @@ def _checked_cost(cost, occupied: np.ndarray) -> np.ndarray:
                          f"tdp.costmap_grid(values)")
     if cost.shape != occupied.shape:
         raise ValueError(f"cost must have the map's shape {occupied.shape}, got {cost.shape}")
-    free = cost[~occupied]
+    free = cost[~occupied].astype(np.float64)  # float16 cannot hold MAX_COST to compare with
     for wrong, what in ((np.isnan(free), "NaN"), (np.isinf(free), "infinite"), (free < 1, "below 1"),
                         (free > MAX_COST, f"above {MAX_COST:g}")):
         if wrong.any():
@@ -376,8 +374,7 @@ def _scenario_row(path: Path, number: int, line: str, grid: GridMap | None) -> P
 
 def _load_image(path: Path, threshold: float) -> GridMap:
     """A plain image: a pixel whose brightness is below ``threshold`` (0-1) is an obstacle."""
-    if not (isinstance(threshold, (int, float)) and 0 < threshold <= 1):
-        raise ValueError(f"threshold must be in (0, 1], got {threshold!r}")
+    threshold = checks.number(threshold, "threshold (0-1)", 0.0, inclusive=False, high=1.0)
     shade, _ = _read_shade(path, with_alpha=False)
     return GridMap(shade < threshold)
 

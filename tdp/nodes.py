@@ -6,6 +6,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import checks
+
 
 class Lattice(NamedTuple):
     """Placed nodes: ``cells`` (n, 2) int (row, col), the lattice ``spacing`` in cells."""
@@ -46,8 +48,7 @@ def place_nodes(occupied: np.ndarray, *, count: int | None = None, spacing: floa
         raise ValueError(f"placement must be one of {PLACEMENTS}, got {rule!r}")
     if spacing is None:
         spacing = spacing_for(occupied.shape, count)
-    if isinstance(spacing, bool) or not isinstance(spacing, (int, float)) or not 1 <= spacing < math.inf:
-        raise ValueError(f"spacing must be a number of cells >= 1, got {spacing!r}")
+    spacing = checks.number(spacing, "spacing (cells)", 1.0)
     rows = range(int(occupied.shape[0] / spacing + 0.5))
     cols = range(int(occupied.shape[1] / spacing + 0.5))
     cells = []

@@ -8,6 +8,7 @@ through besides V and Z; with the default rule (no corner cutting) they must be 
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Callable, NamedTuple
 
 import numpy as np
@@ -83,7 +84,8 @@ def _touches_corner(offsets: list[tuple[int, int]]) -> bool:
 
 def check_neighbourhood(neighbourhood: int) -> int:
     """Return ``neighbourhood`` if it is 4, 8 or 16, else raise ValueError naming it."""
-    if isinstance(neighbourhood, bool) or neighbourhood not in NEIGHBOURHOODS:
+    if isinstance(neighbourhood, bool) or not isinstance(neighbourhood, numbers.Integral) or (
+            neighbourhood not in NEIGHBOURHOODS):
         raise ValueError(f"neighbourhood must be one of {NEIGHBOURHOODS}, got {neighbourhood!r}")
     return int(neighbourhood)
 

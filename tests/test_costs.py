@@ -3,6 +3,7 @@ scipy's Dijkstra on the weighted graph (tests/reference.py) for every stencil an
 random edits, focused and by synchronous iterations; a map whose costs are all 1 gives the binary map's values bit for
 bit."""
 import dataclasses
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -213,7 +214,7 @@ def test_cost_edits_need_a_map_with_costs_and_costs_from_1_to_max_cost():
             costed.set_costs([(1, 1)], bad)
     with pytest.raises(ValueError, match="set_costs"):
         costed.set_costs([(9, 9)], 2.0)
-    for bad in ([2.0, 3.0], "dear", [[2.0]] * 3):
+    for bad in ([2.0, 3.0], "dear", [[2.0]] * 3, "2", True, [True], None):  # numpy reads "2" and True as costs
         with pytest.raises(ValueError, match="costs must be"):
             costed.set_costs([(1, 1)], bad)
     with pytest.raises(ValueError, match="trinary_costmap must be True or False"):
@@ -303,6 +304,14 @@ def test_the_exact_planner_drives_the_cheapest_route_on_a_cost_map():
 def test_a_bad_cost_array_is_a_clear_value_error(cost, message):
     with pytest.raises(ValueError, match=message):
         tdp.GridMap(np.zeros((4, 5), bool), cost=cost)
+
+
+def test_half_precision_costs_are_checked_without_a_warning():
+    """The check compared float16 costs with MAX_COST cast to float16 (inf): numpy warned of an overflow."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        grid = tdp.GridMap(np.zeros((4, 5), bool), cost=np.full((4, 5), 3.0, np.float16))
+    assert grid.cost.dtype == np.float32 and (grid.cost == 3.0).all()
 
 
 def test_costs_on_obstacles_are_ignored_and_inflating_keeps_the_costs():

@@ -198,6 +198,30 @@ def test_a_masks_cells_are_argwheres_row_by_row(rows, cols, share, layout, seed)
     assert cells.dtype == np.int32 and cells.flags.c_contiguous and np.array_equal(cells, np.argwhere(mask))
 
 
+def test_numpy_numbers_are_numbers_everywhere(tmp_path):
+    """d_max, a resolution, an inflation radius, a threshold and a node spacing read from numpy arrays (np.float32,
+    np.int64) were refused as "must be a positive number" while np.float64, a float's subclass, passed."""
+    occupied = np.zeros((10, 10), bool)
+    grid = tdp.GridMap(occupied, resolution=np.float32(0.05), origin=(np.float32(1.0), 0.0))
+    assert grid.resolution == pytest.approx(0.05) and type(grid.resolution) is float
+    assert grid.inflate(np.int64(1)).occupied.sum() == 0
+    field = tdp.DistanceField(grid, (0, 0), d_max=np.float32(5.0))
+    field.converge()
+    assert field.distance((9, 9)) == 5.0
+    Image.fromarray(np.full((3, 4), 255, np.uint8)).save(tmp_path / "m.png")
+    assert not tdp.load_map(tmp_path / "m.png", threshold=np.float32(0.5)).occupied.any()
+    config = tdp.NavigatorConfig(planner="accelerating", spacing=np.float32(5.0))
+    navigator = tdp.Navigator(grid, (0, 0), (9, 9), config)
+    navigator.setup()
+    assert navigator.tick().next_cell == (1, 1)
+    for make in (lambda: tdp.DistanceField(grid, (0, 0), neighbourhood=16.0),
+                 lambda: tdp.DistanceField(grid, (0, 0), d_max=np.float32(-1.0)),
+                 lambda: tdp.GridMap(occupied, resolution=np.float64("nan")),
+                 lambda: tdp.load_map(tmp_path / "m.png", threshold=np.float32(1.5))):
+        with pytest.raises(ValueError):
+            make()
+
+
 def test_numpy_integers_are_cells():
     field = tdp.DistanceField(GRID, (np.int64(0), np.int32(0)))
     field.converge()
