@@ -65,7 +65,7 @@ class SimConfig:
             value = getattr(self, name)
             if value is None and name in optional:
                 continue
-            checks.number(value, name, 0.0)
+            checks.number(value, name, 0)
         for name in ("physics_hz", "control_hz", "frame_every"):
             checks.integer(getattr(self, name), name, 1)
         if self.physics_hz % self.control_hz:
