@@ -3594,13 +3594,13 @@ def _checked_costs(current: np.ndarray | None, count: int, costs) -> np.ndarray:
     ValueError for a binary map or a cost that is not a number from 1 to MAX_COST."""
     if current is None:
         raise ValueError("set_costs needs a map with costs (tdp.GridMap(..., cost=...)); this one is binary")
-    given = np.asarray(costs)
-    if given.dtype.kind not in "iuf":  # numpy would read "2" and True as costs
-        raise ValueError(f"costs must be a number or one per cell ({count}), got {checks.shown(costs)}")
     try:
+        given = np.asarray(costs)
+        if given.dtype.kind not in "iuf":  # numpy would read "2" and True as costs
+            raise TypeError(given.dtype)
         costs = np.broadcast_to(given.astype(np.float64), (count,))
-    except ValueError:
-        raise ValueError(f"costs must be a number or one per cell ({count}), got {np.shape(costs)}") from None
+    except (TypeError, ValueError):  # text, bools, ragged lists, a count that does not broadcast
+        raise ValueError(f"costs must be a number or one per cell ({count}), got {checks.shown(costs)}") from None
     wrong = ~((costs >= 1) & (costs <= MAX_COST))  # NaN is wrong too
     if wrong.any():
         raise ValueError(f"costs must be between 1 and {MAX_COST:g}, got {costs[wrong][0]}")

@@ -178,7 +178,11 @@ def costmap_grid(costmap: np.ndarray, resolution: float = 1.0, origin: tuple[flo
     Raises:
         ValueError: not a 2-D integer array of values 0-255.
     """
-    costmap = np.asarray(costmap)
+    unknown_is_free = checks.flag(unknown_is_free, "unknown_is_free")
+    try:
+        costmap = np.asarray(costmap)
+    except ValueError:  # rows of unequal lengths
+        raise ValueError(f"costmap must be a 2-D integer array, got {checks.shown(costmap)}") from None
     if costmap.ndim != 2 or not np.issubdtype(costmap.dtype, np.integer):
         raise ValueError(f"costmap must be a 2-D integer array, got {costmap.dtype} of shape {costmap.shape}")
     if costmap.size and (costmap.min() < 0 or costmap.max() > 255):
@@ -260,7 +264,8 @@ def load_map(path: str | Path, *, unknown_is_free: bool = False, threshold: floa
         ValueError: an unknown format, a malformed file, ``trinary_costmap=False`` for a map that is not ROS's,
             one of the two inflation parameters without the other.
     """
-    grid = _load(checks.path(path, "path"), unknown_is_free, threshold, checks.flag(trinary_costmap, "trinary_costmap"))
+    grid = _load(checks.path(path, "path"), checks.flag(unknown_is_free, "unknown_is_free"), threshold,
+                 checks.flag(trinary_costmap, "trinary_costmap"))
     if cost_scaling_factor is None and inflation_radius is None:
         return grid
     return grid.inflate(0, cost_scaling_factor=cost_scaling_factor, inflation_radius=inflation_radius)

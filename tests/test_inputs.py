@@ -118,6 +118,10 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
     (lambda: tdp.Navigator(tdp.GridMap(np.zeros((5, 7), bool)), (0, 0), (4, 6), tdp.NavigatorConfig(
         planner="accelerating", nodes=36)), "nodes=36 is more than the 5 x 7 map's cells"),
     (lambda: tdp.costmap_grid(np.full((5, 5), -5)), "costmap values must be 0-255, got values from -5 to -5"),
+    (lambda: tdp.costmap_grid([[0, 0], [0]]), "costmap must be a 2-D integer array, got \\[\\[0, 0\\], \\[0\\]\\]"),
+    (lambda: tdp.costmap_grid(np.zeros((2, 2), int), unknown_is_free="no"), "unknown_is_free must be True or False"),
+    (lambda: tdp.load_map(ROOT / "tests" / "data" / "arena.map", unknown_is_free="no"),
+     "unknown_is_free must be True or False"),
     (lambda: tdp.load_world(None), "path must be a file path"),
     (lambda: tdp.load_scenarios(3.5), "path must be a file path"),
     (lambda: load_spec(7), "path must be a file path"),
