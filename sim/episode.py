@@ -189,19 +189,14 @@ class _Run:
     def drive(self, tick: int, result) -> None:
         """Physics for one tick, steering at control_hz along the planner's route."""
         sim = self.sim
-        route = [self.grid.cell_to_world(*cell) for cell in self.navigator.route(12)]
-        escape = self._escape()
-        if escape is not None:
-            route = [escape]
-        elif not route or self.robot_cell() == self.feed.target:
-            route = [self.grid.cell_to_world(*self.feed.target)]
+        route = self._route(result)
         steps_per_control = sim.physics_hz // sim.control_hz
         control_dt = 1.0 / sim.control_hz
         steps = round(self.tick_s * sim.physics_hz)
         last = self.robot.pose()
         for step in range(steps):
             if step % steps_per_control == 0:
-                if result.mode is Mode.WAIT and escape is None:
+                if not route:
                     v, w = self.controller.stop(control_dt)
                 else:
                     v, w = self.controller.steer(last, route, control_dt)
@@ -214,6 +209,15 @@ class _Run:
             last = now
             self._count_contacts()
         self.trace.append((last[0], last[1], result.mode))
+
+    def _route(self, result: TickResult) -> list[tuple[float, float]]:
+        """The points (x, y in metres) to steer along this tick, none to stop: out of the inflated obstacles the
+        nearest free cell, else the centres of :func:`steering_cells`."""
+        escape = self._escape()
+        if escape is not None:
+            return [escape]
+        cells = steering_cells(self.robot_cell(), self.feed.target, result.next_cell, self.navigator.route(12))
+        return [self.grid.cell_to_world(*cell) for cell in cells]
 
     def _escape(self) -> tuple[float, float] | None:
         """Inside the inflated obstacles (a box came too close) the planner has no successor: head for the
@@ -328,6 +332,19 @@ class _Film:
         """At the end, after ``tick`` ticks: the last state, where no picture shows it."""
         if not self.ticks or self.ticks[-1] != tick:
             self.frames.append(self.camera.picture())
+
+
+def steering_cells(robot: tuple[int, int], target: tuple[int, int], move: tuple[int, int] | None,
+                   route: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    """The cells the robot steers through this tick, given its cell, the target's, the tick's move (None: stay) and
+    the planner's route from the robot: the target's cell once there; none where the tick gives no move (waiting,
+    yielding to a box, a budgeted repair not yet at the robot: the robot stops); the route where it starts with the
+    move (the controller looks ahead along it); else the move alone (a step aside from a box's way)."""
+    if robot == target:
+        return [target]
+    if move is None:
+        return []
+    return route if route and route[0] == move else [move]
 
 
 def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.NavigatorConfig(),

@@ -12,11 +12,12 @@ import pytest
 
 import tdp
 from sim.__main__ import main as sim_command
-from sim.episode import CLEARANCE_M, SimConfig, connect, episode_ticks, margin_floor_m, run_episode
+from sim.episode import (CLEARANCE_M, SimConfig, connect, episode_ticks, margin_floor_m, run_episode,
+                         steering_cells)
 from sim.render import oracle_text
 from sim.robot import DiffDriveRobot, wheel_speeds
 from sim.world import SHAPES_PER_BODY, WALL_TILE_CELLS, SimWorld, box_cells, wall_groups
-from tdp.contract import WorldFeed
+from tdp.contract import Mode, WorldFeed
 from tdp.grid import rectangles
 from tdp.random_worlds import boxes_on_map
 
@@ -304,6 +305,36 @@ def test_the_feed_sends_changed_costs_before_occupancy_and_the_planner_repairs_o
     planner.update_costs([(row, 4) for row in range(5)], 50.0)  # a dear column across the way
     planner.tick()
     assert planner.engine.goal_distances()[2, 0] == pytest.approx(6 + 2 * 25.5, rel=1e-6)  # two moves touch it
+
+
+ROUTE = [(5, 6), (5, 7), (6, 8)]
+
+
+@pytest.mark.parametrize("robot, move, route, cells", [
+    ((5, 5), (5, 6), ROUTE, ROUTE),          # the move starts the route: look ahead along it
+    ((5, 5), None, ROUTE, []),              # no move (wait, yield, a budget's repair behind): stop
+    ((5, 5), (4, 5), ROUTE, [(4, 5)]),      # a step aside from a box's way: that cell alone
+    ((5, 5), (5, 6), [], [(5, 6)]),         # a move and no route (a way out): the move
+    ((9, 9), None, [], [(9, 9)]),           # on the target's cell: its centre
+])
+def test_the_robot_steers_through_the_ticks_move_or_stops(robot, move, route, cells):
+    """The steering used to follow the planner's route whatever the tick decided, and head for the target where the
+    route was empty: a robot yielding to a box drove on at full speed."""
+    assert steering_cells(robot, (9, 9), move, route) == cells
+
+
+def test_a_robot_yielding_to_a_box_in_pybullet_stays_put():
+    """A crossing world where obstacle prediction yields (avoid_boxes): on the ticks the planner yields, the robot
+    moved 0.101 m a tick against 0.097 on the others (it followed the route regardless); it now stops."""
+    world = tdp.random_worlds.make_world("crossing", 80, 7300)
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1, predict_ticks=8, avoid_boxes=True)
+    episode = run_episode(world, config)
+    trace = episode["trace"]
+    moved = {Mode.YIELD: [], Mode.DP: []}
+    for before, after in zip(trace, trace[1:]):
+        moved.get(after[2], []).append(math.hypot(after[0] - before[0], after[1] - before[1]))
+    assert episode["reached"] and len(moved[Mode.YIELD]) >= 5
+    assert np.mean(moved[Mode.YIELD]) < 0.3 * np.mean(moved[Mode.DP])
 
 
 def test_sim_config_takes_both_inflation_parameters_or_neither():
