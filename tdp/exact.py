@@ -157,8 +157,9 @@ class ExactPlanner:
 
     def tick(self) -> TickResult:
         """Repair (focused on the robot; within the budget, if any), then the successor or the way out of an
-        obstacle. Mode ``exact``, ``behind`` (the budget ran out first, or the target's last move waits) or ``wait``
-        (no move)."""
+        obstacle. Mode ``exact``, ``behind`` (the budget ran out first, or the target's last move waits: the move,
+        if any, is as far as the repair got, and no move means stay this tick while the repair catches up) or
+        ``wait`` (no move on the map as it is)."""
         began = time.perf_counter()
         if self.robot == self.engine.goal or not self._holding():
             self._take_target()
@@ -171,7 +172,7 @@ class ExactPlanner:
             step = self.moves.escape(self.engine.occupied, self.robot, self._goal_values) or step
         moving = step is not None or self.robot == self.engine.goal
         on_target = exact and self._target == self.engine.goal
-        mode = (Mode.EXACT if on_target else Mode.BEHIND) if moving else Mode.WAIT
+        mode = (Mode.EXACT if moving else Mode.WAIT) if on_target else Mode.BEHIND
         result = TickResult(mode=mode, next_cell=step)
         result.timings = {"converge": repaired - began, "search": time.perf_counter() - repaired}
         return result

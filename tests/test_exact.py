@@ -267,3 +267,21 @@ def test_bad_inputs_raise():
         tdp.ExactPlanner(tdp.GridMap(np.eye(5, dtype=bool)), (0, 1), (4, 4))
     with pytest.raises(ValueError, match="Navigator runs the planners"):
         tdp.Navigator(tdp.GridMap(np.zeros((5, 5), bool)), (0, 0), (4, 4), EXACT)
+
+
+def test_a_budgeted_planner_not_yet_at_the_robot_is_behind_not_waiting():
+    """A robot carried off (a localisation jump) to a cell the focused repair has not reached: with a budget the
+    tick may give no move yet, and said ``wait`` - what a user reads as "no way to the goal" - while the route was
+    there. It is ``behind`` until the repair reaches the robot, and then the move is the converged field's."""
+    grid = tdp.GridMap(np.zeros((200, 200), bool))
+    planner = tdp.ExactPlanner(grid, (195, 195), (199, 199), tdp.NavigatorConfig(budget_ms=1e-3))
+    planner.setup()
+    planner.move_robot((0, 0))
+    modes = []
+    for _ in range(500):
+        result = planner.tick()
+        modes.append(result.mode)
+        if result.mode == Mode.EXACT:
+            break
+    assert modes[0] == Mode.BEHIND and Mode.WAIT not in modes and modes[-1] == Mode.EXACT and len(modes) > 2
+    assert result.next_cell == (1, 1)
