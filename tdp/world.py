@@ -22,10 +22,21 @@ def _polyline_point(points: list[tuple[float, float]], travelled: float) -> tupl
     return points[-1]
 
 
+def _segment_cells(a: tuple[int, int], b: tuple[int, int], step: float) -> np.ndarray:
+    """int (n, 2): the cells (row, col) the straight segment from cell ``a`` to cell ``b`` passes, sampled every
+    ``step`` cells along it and at its ends, each rounded to the nearest cell as :meth:`Scenario.target` rounds."""
+    samples = np.append(np.arange(0.0, 1.0, step / max(math.dist(a, b), step)), 1.0)[:, None]
+    return np.floor(np.add(a, samples * np.subtract(b, a)) + 0.5).astype(np.int64)
+
+
 def box_distance(cell: tuple[int, int], box: tuple[int, int, int, int]) -> float:
     """Euclidean distance in cells from ``cell`` to the nearest cell of ``box`` = (r0, c0, r1, c1) (0 inside)."""
     r0, c0, r1, c1 = box
     return math.hypot(max(r0 - cell[0], 0, cell[0] - (r1 - 1)), max(c0 - cell[1], 0, cell[1] - (c1 - 1)))
+
+
+#: Cells between the samples that check a target's straight segments for obstacles (:meth:`Scenario.__post_init__`).
+TARGET_PATH_STEP = 0.25
 
 
 def _round(x: float) -> int:
@@ -85,6 +96,9 @@ class Scenario:
     """A world: static ``grid``, robot ``start``, target ``goal`` (which then visits ``target_waypoints`` at
     ``target_speed`` cells per tick), and box ``obstacles``.
 
+    The target walks straight from ``goal`` through each waypoint on free cells of ``grid``: a way through one of its
+    obstacles is a ValueError (boxes may cover the target; they move on).
+
     ``change_tick`` (when the blockage or clearing happens) and ``blocking`` (index of the obstacle that causes it)
     are used by the metrics; ``max_ticks`` bounds an episode; ``tick_s`` is the duration of a tick in seconds (for
     runners on a clock); ``map_source`` is the map entry of the world file it came from, if any.
@@ -122,6 +136,7 @@ class Scenario:
                              f"{checks.shown(self.target_waypoints)}")
         self.target_waypoints = [self.grid.check_free_cell(w, "target waypoint") for w in self.target_waypoints]
         self.target_speed = checks.number(self.target_speed, "target_speed (cells per tick)", 0.0, inclusive=False)
+        self._check_target_path()
         if not isinstance(self.name, str) or not isinstance(self.description, str):
             raise ValueError(f"Scenario name and description must be strings, got {self.name!r}, {self.description!r}")
         checks.optional_integer(self.max_ticks, "Scenario max_ticks", 1)
@@ -129,6 +144,18 @@ class Scenario:
         checks.optional_integer(self.change_tick, "Scenario change_tick (a tick)", 0)
         if self.blocking is not None and not 0 <= checks.integer(self.blocking, "blocking") < len(self.obstacles):
             raise ValueError(f"blocking must index an obstacle (0..{len(self.obstacles) - 1}), got {self.blocking}")
+
+    def _check_target_path(self) -> None:
+        """Refuse a target that walks through the static map's obstacles (a wall between two waypoints): it would
+        stand on them at some ticks, or jump them. Boxes may cover it; they move."""
+        points = [self.goal] + self.target_waypoints
+        for a, b in zip(points, points[1:]):
+            cells = _segment_cells(a, b, TARGET_PATH_STEP)
+            blocked = self.grid.occupied[cells[:, 0], cells[:, 1]]
+            if blocked.any():
+                cell = tuple(int(v) for v in cells[np.argmax(blocked)])
+                raise ValueError(f"the target's path from {a} to {b} crosses an obstacle of the map at {cell}; "
+                                 "its straight segments (goal, then each waypoint) must keep to free cells")
 
     @property
     def tick_limit(self) -> int:

@@ -114,6 +114,9 @@ GRID = tdp.GridMap(np.zeros((10, 10), bool))
     (lambda: tdp.Obstacle(box=(0, 0, 2, 3), waypoints=[(1, 2, 3)]), "waypoints"),
     (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), obstacles=5), "obstacles must be a list of tdp.Obstacle"),
     (lambda: tdp.Scenario(GRID, (0, 0), (5, 5), target_waypoints=5), "target_waypoints must be a list of cells"),
+    (lambda: tdp.Scenario(tdp.GridMap(np.arange(100).reshape(10, 10) % 10 == 4), (0, 0), (5, 5),
+                          target_waypoints=[(9, 5), (9, 1)], target_speed=3.0),
+     r"the target's path from \(9, 5\) to \(9, 1\) crosses an obstacle of the map at \(9, 4\)"),
     (lambda: tdp.load_map(5), "path must be a file path"),
     (lambda: tdp.Navigator(tdp.GridMap(np.zeros((5, 7), bool)), (0, 0), (4, 6), tdp.NavigatorConfig(
         planner="accelerating", nodes=36)), "nodes=36 is more than the 5 x 7 map's cells"),

@@ -73,6 +73,8 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
     (BASE + "tick_s: 1e-1\n", r"tick_s: expected a finite number, got '1e-1' \(YAML reads 1e-1 as text"),
     ("map: nowhere.yaml\nstart: [1, 1]\ngoal: [2, 2]\n", r"map.file: no such map file"),
     (BASE + "target: {waypoints: [[10, 11]]}\n", r"target waypoint \(10, 11\) is on an obstacle"),
+    (BASE + "target: {waypoints: [[18, 1], [2, 1], [2, 28]]}\n", r"the target's path from \(2, 1\) to \(2, 28\) "
+                                                                 r"crosses an obstacle of the map at \(2, 10\)"),
     ("- just\n- a list\n", r"the file: expected a mapping"),
     ("root:x:0:0:root:/root:/bin/bash " * 40 + "\n", r"the file: expected a mapping, got 'root:x:0:0:.{30,60}\.\.\.$"),
     ("map: [unclosed\n", r"not valid YAML"),
