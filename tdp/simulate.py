@@ -23,7 +23,9 @@ class Episode:
     """Metrics of one run (ARCHITECTURE §6). Lengths are in cells; timings in milliseconds per tick (median, mean, p95,
     max; the kernels are compiled in the setup phase, before the first tick). ``ratio``: the length over the
     oracle's, nan unless both reached the goal; ``oracle_length`` is nan where the oracle did not reach it
-    (``oracle_reached``: no way on the map as it went, within the ticks)."""
+    (``oracle_reached``: no way on the map as it went, within the ticks). ``collisions``: ticks whose move the world
+    refused (into or across a cell occupied at that tick); ``hits``: ticks on which a box covered the robot's cell or,
+    faster than a cell a tick, passed over it on its way since the tick before (:meth:`Scenario.jumped_over`)."""
 
     scenario: str
     config: dict
@@ -86,7 +88,7 @@ def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, m
         occupied, target = scenario.occupancy(tick), scenario.target(tick)
         if feed.update(planner, occupied, target):
             record["target_path"].append(target)
-        record["hits"] += int(occupied[robot])
+        record["hits"] += int(occupied[robot] or scenario.jumped_over(tick, robot))
         result = planner.tick()
         result.timings["update"] = feed.planner_s
         wanted = result.next_cell

@@ -194,6 +194,19 @@ class Scenario:
                 mask[max(0, r0):max(0, r1), max(0, c0):max(0, c1)] = True
         return mask & ~self.grid.occupied
 
+    def jumped_over(self, tick: int, cell: tuple[int, int]) -> bool:
+        """Whether a box faster than a cell a tick passed over ``cell`` on its way from tick - 1 to tick, looked at
+        every whole cell of its way before its place at ``tick``: a hit that the occupancy at ``tick`` does not show
+        (a box 2 cells long at 8 cells a tick would otherwise cross a robot unseen 3 times in 4)."""
+        tick, (r, c) = checks.number(tick, "tick"), checks.pair(cell, "cell")
+        for obstacle in self.obstacles:
+            steps = math.ceil(obstacle.speed)
+            for when in (tick - 1 + k / steps for k in range(1, steps)):
+                r0, c0, r1, c1 = obstacle.footprint(when)
+                if obstacle.present(when) and r0 <= r < r1 and c0 <= c < c1:
+                    return True
+        return False
+
     def _covering(self, tick: int, cell: tuple[int, int]):
         """(footprint, moving) of each box present at ``tick`` that covers ``cell`` (row, col)."""
         tick, (r, c) = checks.number(tick, "tick"), checks.pair(cell, "cell")

@@ -539,6 +539,20 @@ def test_obstacles_move_appear_and_vanish():
     assert scenario.target(2) == (9, 2) and scenario.target(50) == (9, 4)
 
 
+@pytest.mark.parametrize("speed", [0.5, 1.0, 4.0, 8.0])
+def test_a_box_passing_over_a_waiting_robot_is_a_hit_on_each_tick_it_covers_or_jumps_the_robot(speed):
+    occupied = np.zeros((11, 11), bool)
+    occupied[4:7, 4:7] = True
+    occupied[5, 5] = False                               # the robot's cell, walled in: it waits there
+    box = tdp.Obstacle(box=(5, 0, 6, 1), waypoints=[(5, 10)], speed=speed)
+    scenario = tdp.Scenario(tdp.GridMap(occupied), (5, 5), (0, 0), obstacles=[box], max_ticks=30)
+    assert [scenario.jumped_over(2, (5, c)) for c in range(11)] == [speed == 4.0 and c in (5, 6, 7) or
+                                                                   speed == 8.0 and c in (9, 10) for c in range(11)]
+    episode = tdp.simulate(scenario)
+    assert set(episode.trajectory) == {(5, 5)}
+    assert episode.hits == (2 if speed == 0.5 else 1)   # at 4 and 8 cells a tick 0 before 2026-12-01: jumped unseen
+
+
 @pytest.mark.parametrize("make, message", [
     (lambda g: tdp.Obstacle(box=(2, 2, 1, 5)), "r1 > r0"),
     (lambda g: tdp.Obstacle(box=(0, 0, 1, 1), speed=0), "speed"),
