@@ -43,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
         figure = ", ".join(str(f) for f in [figure, *save_episode_animation(scenario, [episode], out / "episode.gif",
                                                                          progress=True)])
     ran_out = limit_note(episode.reached, episode.ticks, args.max_ticks or scenario.tick_limit)
-    print(f"reached: {episode.reached}{ran_out} in {episode.ticks} ticks; length {episode.length:.2f} cells, oracle "
+    print(f"reached: {episode.reached}{ran_out} in {episode.ticks} ticks; length {episode.length:.1f} cells, oracle "
           f"{oracle_text(episode)}, ratio {episode.ratio:.3f}; collisions {episode.collisions}, hits "
           f"{episode.hits}; detections {len(episode.detections)} "
           f"({sum(d['relevant'] for d in episode.detections)} relevant); planner "
