@@ -6,7 +6,8 @@ blockage scenarios.
 A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on a local Dask cluster: the six
 random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named scenarios moving-blockage and
 sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
-and box avoidance off or on. Per group, K and setting: worlds, reached %, collisions, hits (ticks a box sat on the
+and box avoidance off or on; exact replanning (K column "exact") with box avoidance off or on. Per group, K and
+setting: worlds, reached %, collisions, hits (ticks a box sat on the
 robot), mean and max ratio to the oracle (over the worlds the oracle reached), detections and the fraction the exact
 pair distances justify (as in ``benchmarks.worlds``; a detection made ahead of a predicted closure counts as
 justified only if the closure comes within the look-back window), yields, and for the named scenarios the ticks from
@@ -35,15 +36,20 @@ def prediction_metrics(scenario: tdp.Scenario, record: dict, planner, config: td
     return row
 
 
+def planner_k(row: dict) -> str:
+    """The K column of an episode: accelerating nodes' DP iterations per move, or "exact" for exact replanning."""
+    return "exact" if row["planner"] == "exact" else str(row["updates_per_move"])
+
+
 def summarise(table: list[dict]) -> list[dict]:
-    """Per group, K and setting, over the episodes of accelerating nodes."""
+    """Per group, K (or the exact planner) and setting."""
     out = []
-    runs = [r for r in table if r["planner"] == "accelerating"]
-    for group in dict.fromkeys(r["group"] for r in runs):
-        for k in sorted({r["updates_per_move"] for r in runs}):
+    ks = dict.fromkeys(map(planner_k, sorted(table, key=lambda r: (r["planner"] == "exact", r["updates_per_move"] or 0))))
+    for group in dict.fromkeys(r["group"] for r in table):
+        for k in ks:
             for (ticks, avoid), label in SETTINGS.items():
-                mine = [r for r in runs if r["group"] == group and r["updates_per_move"] == k
-                        and r["predict_ticks"] == ticks and r["avoid_boxes"] == avoid]
+                mine = [r for r in table if r["group"] == group and planner_k(r) == k
+                        and (r["predict_ticks"] or 0) == ticks and r["avoid_boxes"] == avoid]
                 if not mine:
                     continue
                 ratios = [r["ratio"] for r in mine if r["reached"] and r["ratio"] is not None
@@ -79,7 +85,7 @@ def figure(summary: list[dict], path) -> None:
             grouped_bars(ax, groups, {label: [next((s[field] for s in summary if s["group"] == g and s["k"] == k
                                                     and s["setting"] == label), math.nan) for g in groups]
                                       for label in labels})
-            ax.set_title(f"K = {k}: {title}", fontsize=9)
+            ax.set_title(f"{'exact replanning' if k == 'exact' else f'K = {k}'}: {title}", fontsize=9)
             if field == "mean_ratio":
                 ax.set_ylim(0.9, None)
     save_figure(fig, path)

@@ -51,8 +51,9 @@ class NavigatorConfig:
     predict_ticks: obstacle prediction's horizon H in ticks (0: off; ARCHITECTURE §5.7): moving boxes are tracked
     from the map updates and the node layers (not the goal layer) see the cells they are predicted to sweep over
     in the next H ticks, so the monitor flags a passage a box is about to close.
-    avoid_boxes: with the same tracking, the robot does not step into a cell a box is predicted to enter at the next
-    tick: it yields (stays) or, if a box is about to enter its own cell, steps aside.
+    avoid_boxes: boxes tracked as for ``predict_ticks`` (with every planner, the exact one too), the robot does not
+    step into a cell a box is predicted to enter at the next tick, nor drive on where a box crossing its way will meet
+    it: it yields (stays) or, if a box is about to enter its own cell, steps aside.
 
     The rules' thresholds (defaults as measured in RESULTS.md; tests set them directly):
     evidence_slack: with switch_back="evidence", the goal layer's route wins when it is at most this fraction longer
@@ -116,9 +117,10 @@ class NavigatorConfig:
         normalised("settled_cells", checks.number(self.settled_cells, "settled_cells", 0.0))
         normalised("avoid_ticks", checks.integer(self.avoid_ticks, "avoid_ticks", 1))
         normalised("meet_ticks", checks.integer(self.meet_ticks, "meet_ticks", 1))
-        if self.planner == "exact" and (self.predict_ticks or self.avoid_boxes):
-            raise ValueError("predict_ticks and avoid_boxes track boxes for the DP planners: they need planner "
-                             "'accelerating' or 'plain-dp', not 'exact'")
+        if self.planner == "exact" and self.predict_ticks:
+            raise ValueError("predict_ticks holds predicted cells in the node layers of the DP planners: it needs "
+                             "planner 'accelerating' or 'plain-dp', not 'exact' (whose goal layer stays exact; "
+                             "avoid_boxes works with every planner)")
 
     @property
     def accelerating(self) -> bool:
@@ -142,15 +144,17 @@ class NavigatorConfig:
 CONFIG_FIELDS = tuple(f.name for f in fields(NavigatorConfig) if f.name != "planner")
 #: The fields every planner reads: the moves allowed.
 STENCIL_FIELDS = ("neighbourhood", "corner_cutting")
+#: The fields of box avoidance (every planner reads them).
+AVOID_FIELDS = ("avoid_boxes", "avoid_ticks", "meet_ticks")
 #: The fields only accelerating nodes read: the node lattice and the blockage test.
 NODE_FIELDS = ("nodes", "spacing", "vision", "detect_window", "detect_rise", "placement", "switch_back")
 
 
 def fields_read(planner: str) -> tuple[str, ...]:
     """The :class:`NavigatorConfig` fields besides ``planner`` that ``planner`` (one of PLANNERS) reads: the
-    stencil, ``d_max`` and ``budget_ms`` for exact replanning, all but the node lattice's for plain DP, all for
-    accelerating nodes. Sweep specs and command lines refuse the others rather than ignore them."""
-    return {"exact": STENCIL_FIELDS + ("d_max", "budget_ms"),
+    stencil, ``d_max``, ``budget_ms`` and box avoidance for exact replanning, all but the node lattice's for plain
+    DP, all for accelerating nodes. Sweep specs and command lines refuse the others rather than ignore them."""
+    return {"exact": STENCIL_FIELDS + ("d_max", "budget_ms") + AVOID_FIELDS,
             "plain-dp": tuple(f for f in CONFIG_FIELDS if f not in NODE_FIELDS)}.get(planner, CONFIG_FIELDS)
 
 

@@ -9,6 +9,7 @@ merged, and the robot follows the partly repaired layer meanwhile (see :class:`E
 from __future__ import annotations
 
 import time
+from functools import partial
 
 import numpy as np
 
@@ -18,6 +19,7 @@ from .engine import SLICE_GROWTH, Engine, sweeps_fitting
 from .field import cells_from
 from .grid import GridMap
 from .config import NavigatorConfig
+from .lookout import BoxLookout
 from .stencil import RobotMoves
 
 #: With a budget, a slice of a tick's repair makes at least this many sweeps (a pass over an 8 x 8 tile, about
@@ -45,7 +47,9 @@ class ExactPlanner:
     Cells are (row, col), distances in cells. The same contract as :class:`tdp.Navigator` (:meth:`setup`, then each
     tick :meth:`update_map`, :meth:`set_goal`, :meth:`tick`, :meth:`move_robot`), the same escape rule when an
     obstacle covers the robot's cell (:func:`tdp.stencil.escape_move`), no node layers. It reads the stencil,
-    ``d_max`` and ``budget_ms`` of the config.
+    ``d_max``, ``budget_ms`` and ``avoid_boxes`` (with ``avoid_ticks`` and ``meet_ticks``) of the config: with
+    ``avoid_boxes`` the tick's move is vetted against the boxes tracked from the map's updates
+    (:class:`tdp.lookout.BoxLookout`) and the robot yields (mode ``yield``) or steps aside where one may meet it.
 
     Unbudgeted, every tick's move is the successor of a full converge on that tick's map (mode ``exact``). With
     ``budget_ms`` a tick repairs for at most about that long (its work in 8 x 8 tiles, plus a launch: RESULTS.md §0);
@@ -81,6 +85,7 @@ class ExactPlanner:
                              neighbourhood=config.neighbourhood, corner_cutting=config.corner_cutting, cost=grid.cost)
         self.nodes = np.zeros((0, 2), np.int32)
         self.moves = RobotMoves(grid.occupied, config.neighbourhood, config.corner_cutting, config.d_max)
+        self.lookout = BoxLookout(self.engine, config) if config.avoid_boxes else None
         self._sweep_s = 0.0  # seconds per sweep, beyond the fixed cost, in the last slice that made any
         self._last_sweeps = FIRST_SWEEPS  # the sweeps the last slice made
         self._slice_s = 0.0  # the fixed cost of a slice (a converge launch with nothing to settle), from setup()
@@ -121,6 +126,8 @@ class ExactPlanner:
         cells = cells_from(self.grid.shape, cells_or_mask, "update_map")
         flags = checks.flags(occupied, len(cells), "occupied")
         self.moves.freed(cells, flags)
+        if self.lookout:
+            self.lookout.note_update(cells, flags)
         if self.engine.set_cells(cells, flags):
             self._exact_from = ()
 
@@ -158,8 +165,8 @@ class ExactPlanner:
     def tick(self) -> TickResult:
         """Repair (focused on the robot; within the budget, if any), then the successor or the way out of an
         obstacle. Mode ``exact``, ``behind`` (the budget ran out first, or the target's last move waits: the move,
-        if any, is as far as the repair got, and no move means stay this tick while the repair catches up) or
-        ``wait`` (no move on the map as it is)."""
+        if any, is as far as the repair got, and no move means stay this tick while the repair catches up),
+        ``wait`` (no move on the map as it is) or, with ``avoid_boxes``, ``yield`` (a box may meet the move)."""
         began = time.perf_counter()
         if self.robot == self.engine.goal or not self._holding():
             self._take_target()
@@ -173,9 +180,24 @@ class ExactPlanner:
         moving = step is not None or self.robot == self.engine.goal
         on_target = exact and self._target == self.engine.goal
         mode = (Mode.EXACT if moving else Mode.WAIT) if on_target else Mode.BEHIND
+        searched = time.perf_counter()
+        if self.lookout:
+            cleared = self._clear(step)
+            mode, step = (Mode.YIELD, None) if step is not None and cleared is None else (mode, cleared)
         result = TickResult(mode=mode, next_cell=step)
-        result.timings = {"converge": repaired - began, "search": time.perf_counter() - repaired}
+        result.timings = {"converge": repaired - began, "search": searched - repaired}
+        if self.lookout:
+            result.timings["predict"] = time.perf_counter() - searched
         return result
+
+    def _clear(self, step: tuple[int, int] | None) -> tuple[int, int] | None:
+        """With ``avoid_boxes``: the tick's move vetted against the tracked boxes' predicted arrivals
+        (:meth:`tdp.lookout.BoxLookout.clear_move`: the move, none to yield, or a step aside)."""
+        self.lookout.predict()
+        if step is None:
+            return None
+        legal_moves = partial(self.moves.legal, self.engine.occupied, self.robot)
+        return self.lookout.clear_move(self.robot, step, self.route, legal_moves, self._goal_values)
 
     def _count_tick(self, exact: bool) -> None:
         """Count a tick for ``holds_goal``: one the repair after the last goal move took, or one since it reached the

@@ -1,5 +1,5 @@
-"""Obstacle prediction for the DP planners (ARCHITECTURE §5.7): moving boxes tracked from the map's updates, the
-cells they are about to sweep over held occupied in the node layers, and the robot kept out of their way."""
+"""Obstacle prediction (ARCHITECTURE §5.7): moving boxes tracked from the map's updates, the cells they are about to
+sweep over held occupied in the node layers (the DP planners), and the robot kept out of their way (every planner)."""
 from __future__ import annotations
 
 import math
@@ -11,10 +11,12 @@ from .checks import Cell
 from .config import NavigatorConfig
 from .engine import Engine
 from .predict import MotionPredictor
+from .stencil import REACH
 
 
 class BoxLookout:
-    """Tracks moving boxes for a :class:`tdp.Navigator` with ``predict_ticks`` or ``avoid_boxes``.
+    """Tracks moving boxes for a :class:`tdp.Navigator` with ``predict_ticks`` or ``avoid_boxes``, or an
+    :class:`tdp.ExactPlanner` with ``avoid_boxes`` (``predict_ticks`` 0: no node layer is written).
 
     ``predicted`` is the (H, W) mask of cells the node layers hold occupied on prediction alone (updated in place).
     Each map update goes through :meth:`note_update` before the engine takes it and :meth:`hold` after; each tick
@@ -69,7 +71,7 @@ class BoxLookout:
         ``legal_moves()`` (cell, length; asked for only then) that no box enters at the next tick - one that none
         enters within ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus
         the move's length among them; ``wanted`` when every move is entered at the next tick."""
-        arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks)
+        arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks, near=(robot, REACH))
         if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
             return wanted
         if arrivals.get(robot, math.inf) > 1:
@@ -91,9 +93,12 @@ class BoxLookout:
         moving along the robot's way is left to the next-cell test: waiting for it does not clear the way."""
         if arrivals.get(wanted, math.inf) <= 1:
             return True
+        reach = REACH * self.config.meet_ticks  # the robot's next meet_ticks cells lie within it
+        if not self.predictor.may_reach(self.ticks, self.config.meet_ticks, robot, reach):
+            return False  # no box can meet the robot: its route is not traced (a kernel launch)
         ahead = route(self.config.meet_ticks)
         if not ahead or ahead[0] != wanted:
             return False
         heading = np.subtract(ahead[-1], robot)
-        across = self.predictor.arrivals(self.ticks, self.config.meet_ticks, across=heading)
+        across = self.predictor.arrivals(self.ticks, self.config.meet_ticks, across=heading, near=(robot, reach))
         return any(across.get(cell, math.inf) <= moves_there for moves_there, cell in enumerate(ahead, start=1))

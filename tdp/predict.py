@@ -88,16 +88,18 @@ class MotionPredictor:
                 best, best_distance = i, distance
         return best
 
-    def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None) -> dict[tuple[int, int], int]:
+    def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
+                 near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
         first such tick (1 = the next). A box slower than a cell per tick moves a cell at a time, every 1 / speed
         ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 / speed) ticks after
         it, and only those ticks are flagged (a box seen every other tick is not expected every tick), a move
         overdue (no edge seen since its window began) from the next tick on; a faster one sweeps as in
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
-        than 45 degrees to it either way)."""
+        than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
+        within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
         found: dict[tuple[int, int], int] = {}
-        for track in self._moving(tick):
+        for track in self._moving(tick, ahead, near):
             if across is not None and not _crosses(track.velocity, across):
                 continue
             for step in range(1, ahead + 1):
@@ -106,10 +108,17 @@ class MotionPredictor:
                     found.setdefault(cell, step)
         return found
 
-    def _moving(self, tick: int) -> list[Track]:
-        """The tracks with a velocity that are still taken to be moving at ``tick``."""
+    def may_reach(self, tick: int, ahead: int, cell: tuple[int, int], radius: float) -> bool:
+        """Whether a tracked box may come within ``radius`` cells (in rows and in cols) of ``cell`` in the ``ahead``
+        ticks after ``tick`` (:func:`_may_reach`)."""
+        return bool(self._moving(tick, ahead, (cell, radius)))
+
+    def _moving(self, tick: int, ahead: int = 0, near: tuple[tuple[int, int], float] | None = None) -> list[Track]:
+        """The tracks with a velocity that are still taken to be moving at ``tick``; with ``near`` (a cell and a
+        radius), those that may come within the radius of the cell by ``tick + ahead`` (:func:`_may_reach`)."""
         return [track for track in self.tracks
-                if track.velocity is not None and track.alive_at(tick, self.min_speed)]
+                if track.velocity is not None and track.alive_at(tick, self.min_speed)
+                and (near is None or _may_reach(track, tick + ahead, *near))]
 
     def _inside(self, cells: np.ndarray) -> np.ndarray:
         """The rows of ``cells`` inside the map."""
@@ -143,6 +152,14 @@ class MotionPredictor:
         if not found:
             return np.zeros((0, 2), np.int64)
         return self._inside(np.unique(np.vstack(found), axis=0))
+
+
+def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -> bool:
+    """Whether the box of ``track`` may come within ``radius`` cells (in rows and in cols) of ``cell`` by tick
+    ``until``: its edge moves at most max(speed, 1) cells a tick in each since it was seen (a slow box a cell at a
+    time), and a cell more where a world rounds its place up."""
+    reach = max(float(np.abs(track.velocity).max()), 1.0) * (until - track.tick) + 1.0
+    return float(np.abs(track.edge - np.asarray(cell)).max(axis=1).min()) <= radius + reach
 
 
 def _swept_offsets(now: np.ndarray, then: np.ndarray) -> list[np.ndarray]:

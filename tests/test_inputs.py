@@ -380,7 +380,8 @@ def test_a_quick_worlds_options_with_another_world_are_an_error_not_ignored(tmp_
 
 @pytest.mark.parametrize("options, message", [
     (["--nodes", "9"], "--nodes: not read by exact replanning (--planner exact)"),
-    (["--updates", "1", "--avoid-boxes"], "--updates, --avoid-boxes: not read by exact replanning (--planner exact)"),
+    (["--updates", "1", "--predict-ticks", "4", "--avoid-boxes"],
+     "--updates, --predict-ticks: not read by exact replanning (--planner exact)"),
     (["--planner", "plain-dp", "--vision", "2", "--detect-window", "4"],
      "--vision, --detect-window: not read by plain DP (--planner plain-dp)"),
 ])

@@ -7,6 +7,7 @@ from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
 from tdp.contract import WorldFeed
 from tdp.predict import MotionPredictor, clusters
 from tdp.random_worlds import make_world
+from tdp.simulate import oracle_run
 
 
 def column(col: int, rows=range(4, 7)) -> np.ndarray:
@@ -176,27 +177,56 @@ def test_a_whole_map_sent_again_each_tick_changes_no_layer_and_no_prediction():
     assert fed.lookout.predicted.any() and np.array_equal(fed.lookout.predicted, resent.lookout.predicted)
 
 
-def test_avoiding_boxes_keeps_the_robot_out_of_their_way():
-    """cluttered-100-0 at K = 4: a sliding box drives onto the robot and sits on it for 26 ticks; with avoid_boxes
-    the robot yields or steps aside and is never hit, and reaches the goal."""
-    scenario = make_world("cluttered", 100, 0)
-    hits = {}
+@pytest.mark.parametrize("planner, size, seed", [("accelerating", 100, 0), ("exact", 60, 1)])
+def test_avoiding_boxes_keeps_the_robot_out_of_their_way(planner, size, seed):
+    """A sliding box drives onto the robot and sits on it (cluttered-100-0, accelerating nodes at K = 4: 26 ticks;
+    cluttered-60-1, the exact planner - the oracle -: 7); with avoid_boxes the robot yields or steps aside and is
+    never hit, and reaches the goal."""
+    scenario = make_world("cluttered", size, seed)
+    hits, modes = {}, {}
     for avoid in (False, True):
-        record, _ = run_navigator(scenario, tdp.NavigatorConfig(planner="accelerating", avoid_boxes=avoid), 400)
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(planner=planner, avoid_boxes=avoid), 400)
         assert record["reached"] and record["collisions"] == 0
-        hits[avoid] = record["hits"]
+        hits[avoid], modes[avoid] = record["hits"], set(record["modes"])
     assert hits[False] > 0 and hits[True] == 0
+    assert tdp.Mode.YIELD in modes[True] and tdp.Mode.YIELD not in modes[False]
 
 
+def test_avoiding_boxes_leaves_the_exact_planner_on_the_oracles_way_where_no_box_comes_near():
+    scenario = make_world("rooms", 100, 1)  # doors that close, no box that moves
+    record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=True))
+    assert record["reached"] and record["trajectory"] == oracle_run(scenario, tdp.NavigatorConfig(), 600)["trajectory"]
+
+
+def test_arrivals_near_a_cell_are_the_arrivals_within_its_radius():
+    """The filter that spares the lookout its work far from the robot (``near``) leaves out no cell within the
+    radius: the boxes of test_a_box_moving_one_cell_a_tick..., and one coming down at 2 cells a tick."""
+    predictor = MotionPredictor((40, 40))
+    for tick, (col, row) in enumerate([(10, 30), (11, 28)], start=1):
+        predictor.observe(tick, np.vstack([column(col), [(row, c) for c in range(20, 24)]]))
+    for ahead in (1, 2, 5):
+        every = predictor.arrivals(2, ahead)
+        assert every
+        for cell in [(5, 12), (5, 20), (20, 21), (35, 5), (0, 39)]:
+            for radius in (0, 2, 6):
+                within = {c: t for c, t in every.items() if max(abs(c[0] - cell[0]), abs(c[1] - cell[1])) <= radius}
+                near = predictor.arrivals(2, ahead, near=(cell, radius))
+                assert {c: t for c, t in near.items() if c in within} == within
+                assert predictor.may_reach(2, ahead, cell, radius) or not within
+    assert not predictor.may_reach(2, 1, (35, 5), 2) and predictor.may_reach(2, 1, (5, 14), 1)
+
+
+@pytest.mark.parametrize("planner", ["accelerating", "exact"])
 @pytest.mark.parametrize("box_col", [12, 16])
-def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(box_col):
+def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(box_col, planner):
     """Open ground, the robot driving east along row 20, a 6 x 6 box driving south across its way at half a cell
     per tick. With avoid_boxes the robot waits for the box to pass and keeps to its row (within a cell); checking
     only its next cell, it stepped aside along the box's front, a cell per yield, down to row 43 (86 cells of path
     against 55)."""
     box = tdp.Obstacle((12, box_col, 18, box_col + 6), waypoints=((40, box_col),), speed=0.5)
     scenario = tdp.Scenario(tdp.GridMap(np.zeros((44, 60), bool)), (20, 2), (20, 57), obstacles=[box])
-    config = tdp.NavigatorConfig(planner="accelerating", avoid_boxes=True, updates_per_move=1)
+    config = tdp.NavigatorConfig(planner=planner, avoid_boxes=True, **({} if planner == "exact" else
+                                                                       {"updates_per_move": 1}))
     record, _ = run_navigator(scenario, config, 300)
     rows = [row for row, _ in record["trajectory"]]
     assert record["reached"] and record["collisions"] == 0 and record["hits"] == 0
