@@ -48,9 +48,9 @@ class NavigatorConfig:
     switch_back: "evidence" (leave a backup as soon as the goal layer's successors reach G by a route no longer
     than the backup's estimate, and never start one that the goal layer already beats) or "paper" (only after
     ||Path|| DP iterations, section 4.3).
-    predict_ticks: obstacle prediction's horizon H in ticks (0: off; ARCHITECTURE §5.7): moving boxes are tracked
-    from the map updates and the node layers (not the goal layer) see the cells they are predicted to sweep over
-    in the next H ticks, so the monitor flags a passage a box is about to close.
+    predict_ticks: obstacle prediction's horizon H in ticks (0: off; the DP planners only; ARCHITECTURE §5.7): moving
+    boxes are tracked from the map updates and the node layers (not the goal layer) see the cells they are predicted
+    to sweep over in the next H ticks, so the monitor flags a passage a box is about to close.
     avoid_boxes: boxes tracked as for ``predict_ticks`` (with every planner, the exact one too), the robot does not
     step into a cell a box is predicted to enter at the next tick, nor drive on where a box crossing its way will meet
     it: it yields (stays) or, if a box is about to enter its own cell, steps aside.
