@@ -54,12 +54,23 @@ def cost_bar(fig, ax, shading) -> None:
         fig.colorbar(shading, ax=ax, fraction=0.046, label="traversal cost (1: open ground)")
 
 
+def map_figsize(shape: tuple[int, int], longest_in: float = 6.0, shortest_in: float = 2.0) -> tuple[float, float]:
+    """A figure's (width, height) in inches for a map of ``shape`` (rows, cols) cells: its longer side
+    ``longest_in``, the other in the map's proportion but at least ``shortest_in``, and 0.4 more in height for a
+    title. Sized by the map's proportion alone, a map of 3,000 x 2 cells asked for a figure 9,000 inches tall
+    (matplotlib took 23 GB and was killed)."""
+    rows, cols = shape
+    short = max(longest_in * min(rows, cols) / max(rows, cols), shortest_in)
+    width, height = (longest_in, short) if cols >= rows else (short, longest_in)
+    return width, height + 0.4
+
+
 def save_path_figure(grid: GridMap, path: list[tuple[int, int]], out: str | Path, title: str = "",
                      distances: np.ndarray | None = None) -> Path:
     """Write a PNG of the map, its costs or else the distance field (if given), and the path; returns the file
     written."""
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(6, 6 * grid.shape[0] / grid.shape[1] + 0.4))
+    fig, ax = plt.subplots(figsize=map_figsize(grid.shape))
     if distances is not None and grid.cost is None:
         shown = np.where(np.isfinite(distances) & ~grid.occupied, distances, np.nan)
         ax.imshow(shown, cmap="viridis", interpolation="nearest", alpha=0.45)

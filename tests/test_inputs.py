@@ -354,6 +354,20 @@ def test_cost_options_on_the_command_line_plan_on_nav2s_inflation_cost_and_half_
                                                             "together (nav2's inflation layer)")
 
 
+@pytest.mark.parametrize("shape", [(3000, 2), (2, 3000)])
+def test_plan_on_a_map_thousands_of_times_longer_than_wide_draws_a_figure_of_ordinary_size(tmp_path, shape):
+    """The figure was sized by the map's proportion alone: a map of 3,000 x 2 cells asked matplotlib for a figure
+    9,000 inches tall, and ``tdp plan`` was killed for memory (23 GB) after two minutes."""
+    from tdp.plot import map_figsize
+
+    assert map_figsize((3000, 2)) == (2.0, 6.4) and map_figsize((50, 100)) == (6.0, 3.4)
+    Image.fromarray(np.full(shape, 255, np.uint8)).save(tmp_path / "hall.png")
+    assert tdp_command(["plan", str(tmp_path / "hall.png"), "--start", "0", "0", "--goal", "1", "1",
+                        "--out", str(tmp_path / "plan")]) == 0
+    width, height = Image.open(tmp_path / "plan" / "plan.png").size
+    assert max(width, height) <= 1000 and min(width, height) >= 150
+
+
 @pytest.mark.parametrize("command, named", [
     (["run", "--scenario", "static", "--start", "1", "1"], "--start"),
     (["run", "--world", "examples/turtlebot3-world.yaml", "--boxes", "3", "--seed", "0"], "--boxes, --seed"),
