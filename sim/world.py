@@ -87,6 +87,7 @@ class SimWorld:
             elif not present and index in self.moving:
                 body = self.moving.pop(index)
                 del self.half_extents[body]
+                self._last_seen.pop(body, None)  # PyBullet gives its id to the next body made
                 p.removeBody(body, physicsClientId=self.client)
             elif present:
                 p.resetBasePositionAndOrientation(self.moving[index], self._centre(self.obstacle_box(index, time_s)),

@@ -96,6 +96,20 @@ def test_moving_box_footprint_comes_from_its_body(client):
                                   scenario.occupancy(5) | scenario.occupancy(6))
 
 
+def test_a_box_appearing_after_another_vanished_is_not_swept_from_where_the_other_was(client):
+    """PyBullet gives a new body the id of one removed; the velocity of a box that appeared was measured from the
+    last pose of the box that had vanished under that id, and its sweep crossed the map towards it."""
+    grid = tdp.GridMap(np.zeros((40, 40), bool))
+    gone = tdp.Obstacle(box=(2, 2, 5, 5), vanish_at=2)
+    late = tdp.Obstacle(box=(30, 30, 33, 33), appear_at=4)
+    scenario = tdp.Scenario(grid, (39, 0), (0, 39), obstacles=[gone, late])
+    world = SimWorld(client, scenario, cell_m=0.1, tick_s=0.5)
+    for tick in range(6):
+        world.update(tick * 0.5)
+        swept = world.moving_footprints(0.0, tick * 0.5, horizon_s=2.0)
+        np.testing.assert_array_equal(swept, scenario.occupancy(tick))
+
+
 @pytest.mark.parametrize("seed", range(5))
 def test_rectangles_cover_exactly_the_occupied_cells(seed):
     occupied = np.random.default_rng(seed).random((15, 17)) < 0.4
