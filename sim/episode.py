@@ -216,7 +216,9 @@ class _Run:
         escape = self._escape()
         if escape is not None:
             return [escape]
-        cells = steering_cells(self.robot_cell(), self.feed.target, result.next_cell, self.navigator.route(12))
+        move = result.next_cell
+        route = [] if move is None else self.navigator.route(12)  # a tick without a move steers along none
+        cells = steering_cells(self.robot_cell(), self.feed.target, move, route)
         return [self.grid.cell_to_world(*cell) for cell in cells]
 
     def _escape(self) -> tuple[float, float] | None:
