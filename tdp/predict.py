@@ -15,7 +15,7 @@ second edge on. No world ids are used.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -38,6 +38,13 @@ class Track:
     tick: int
     velocity: np.ndarray | None = None
     seen: tuple = ()
+    speed: float = field(init=False)  # the velocity's largest row or col component, in cells per tick (0: unknown)
+    bounds: tuple[int, int, int, int] = field(init=False)  # the edge's least row and col, then its greatest
+
+    def __post_init__(self):
+        self.speed = 0.0 if self.velocity is None else float(np.abs(self.velocity).max())
+        low, high = self.edge.min(axis=0), self.edge.max(axis=0)
+        self.bounds = (int(low[0]), int(low[1]), int(high[0]), int(high[1]))
 
     @property
     def centre(self) -> np.ndarray:
@@ -47,7 +54,7 @@ class Track:
     def alive_at(self, tick: int, min_speed: float) -> bool:
         """Whether the obstacle is still taken to be moving at ``tick``: its next edge is due within the ticks a
         one-cell move takes at its speed (at ``min_speed`` while its speed is not known yet), plus one."""
-        speed = min_speed if self.velocity is None else float(np.abs(self.velocity).max())
+        speed = min_speed if self.velocity is None else self.speed
         return speed > 0 and tick - self.tick <= math.ceil(1.0 / max(speed, min_speed)) + 1
 
 
@@ -68,22 +75,24 @@ class MotionPredictor:
         matched: set[int] = set()
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
-            index = self._match(edge, tick, previous, matched)
-            velocity, seen = None, ((tick, edge.mean(axis=0)),)
+            centre = edge.mean(axis=0)
+            index = self._match(edge, centre, tick, previous, matched)
+            velocity, seen = None, ((tick, centre),)
             if index is not None:
                 matched.add(index)
-                velocity, seen = _continued(previous[index], tick, edge.mean(axis=0))
+                velocity, seen = _continued(previous[index], tick, centre)
             tracks.append(Track(edge, tick, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
-    def _match(self, edge: np.ndarray, tick: int, previous: list[Track], taken: set[int]) -> int | None:
-        """The previous track this edge most plausibly continues, or None."""
+    def _match(self, edge: np.ndarray, centre: np.ndarray, tick: int, previous: list[Track],
+               taken: set[int]) -> int | None:
+        """The previous track this edge (its cells and their ``centre``) most plausibly continues, or None."""
         best, best_distance = None, math.inf
         for i, track in enumerate(previous):
             elapsed = tick - track.tick
             if i in taken or elapsed <= 0 or not 0.5 <= len(edge) / len(track.edge) <= 2.0:
                 continue
-            distance = float(np.abs(edge.mean(axis=0) - track.centre).max())
+            distance = float(np.abs(centre - track.centre).max())
             if 0 < distance <= self.max_speed * elapsed + 0.5 and distance < best_distance:
                 best, best_distance = i, distance
         return best
@@ -130,7 +139,7 @@ class MotionPredictor:
         """The cells a track's edge may move into at ``step`` ticks from now, ``waited`` ticks after its last edge
         was seen. A slow box seen not to move since (a move overdue: its period is not a whole number of ticks, or
         it slowed) has made none of its moves yet: they are counted from now on at the least."""
-        speed = float(np.abs(track.velocity).max())
+        speed = track.speed
         elapsed = waited + step
         if speed >= 1.0:
             return [track.edge + offset for offset in _swept_offsets(track.velocity * (elapsed - 1),
@@ -158,8 +167,9 @@ def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -
     """Whether the box of ``track`` may come within ``radius`` cells (in rows and in cols) of ``cell`` by tick
     ``until``: its edge moves at most max(speed, 1) cells a tick in each since it was seen (a slow box a cell at a
     time), and a cell more where a world rounds its place up."""
-    reach = max(float(np.abs(track.velocity).max()), 1.0) * (until - track.tick) + 1.0
-    return float(np.abs(track.edge - np.asarray(cell)).max(axis=1).min()) <= radius + reach
+    reach = max(track.speed, 1.0) * (until - track.tick) + 1.0
+    r0, c0, r1, c1 = track.bounds  # the distance to the edge's bounds is at most the distance to its nearest cell
+    return max(r0 - cell[0], cell[0] - r1, c0 - cell[1], cell[1] - c1, 0) <= radius + reach
 
 
 def _swept_offsets(now: np.ndarray, then: np.ndarray) -> list[np.ndarray]:
