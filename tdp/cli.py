@@ -147,7 +147,8 @@ def world_from(args: argparse.Namespace, costs_on_any_world: bool = False):
 
 def limit_note(reached: bool, ticks: int, max_ticks: int) -> str:
     """The words a run's summary line adds when the episode stopped because its ``max_ticks`` ran out, else none."""
-    return f" (the episode's limit, {max_ticks} ticks, ran out)" if not reached and ticks >= max_ticks else ""
+    return (f" (the episode's limit, {max_ticks} ticks, ran out; a world file's max_ticks or max_s, or tdp run's "
+            "--max-ticks, sets it)") if not reached and ticks >= max_ticks else ""
 
 
 def output_folder(path: str | Path, option: str = "--out") -> Path:

@@ -19,6 +19,7 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
@@ -369,6 +370,9 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     Raises:
         ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
             ``seed`` not an integer >= 0, ``blockage`` not a bool.
+
+    Warns:
+        UserWarning: fewer boxes fit on the map than ``boxes`` (a maze or 1-cell corridors have room for none).
     """
     if not isinstance(grid, GridMap):
         raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
@@ -397,6 +401,10 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
             continue
         speed = float(rng.uniform(0.3, 0.6))
         obstacles.append(Obstacle(box=box, waypoints=_shuttle((r, c), end, max(grid.shape), speed), speed=speed))
+    if len(obstacles) < boxes:
+        warnings.warn(f"only {len(obstacles)} of the {boxes} boxes asked for fit on this map: a box of about 0.3-0.6 m "
+                      "shuttles along a straight run of free ground 3 to 8 times its side, clear of the walls, the "
+                      "start and the goal", UserWarning, stacklevel=2)
     change = None
     if blockage:
         plug, change = _plug_on_route(grid, route)

@@ -444,6 +444,19 @@ def test_coordinates_origins_and_route_lengths_that_are_not_numbers_are_value_er
         assert navigator.route(10**30) == [(k, k) for k in range(1, 10)] and navigator.route(-1) == []
 
 
+def test_a_quick_world_with_fewer_boxes_than_asked_says_so():
+    """On a 1-cell corridor or a maze no box fits; ``--boxes 5`` gave none without a word."""
+    from tdp.random_worlds import boxes_on_map
+
+    corridor = np.ones((20, 100), bool)
+    corridor[10, :] = False
+    with pytest.warns(UserWarning, match="only 0 of the 5 boxes asked for fit on this map"):
+        assert boxes_on_map(tdp.GridMap(corridor), (10, 0), (10, 99), boxes=5).obstacles == []
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert len(boxes_on_map(tdp.GridMap(np.zeros((60, 60), bool)), (0, 0), (59, 59), boxes=3).obstacles) == 3
+
+
 def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     """The same fuzz, on the world's side: boxes_on_map truncated boxes=2.5 to 2 and died on a list or infinity
     (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError); a scenario's occupancy, target,

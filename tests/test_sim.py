@@ -146,7 +146,7 @@ def test_an_episode_whose_limit_runs_out_says_so_and_the_margins_flag(tmp_path, 
     world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (27, 27), max_ticks=3)
     (tmp_path / "short.yaml").write_text(world.to_yaml())
     assert sim_command(["run", "--world", str(tmp_path / "short.yaml"), "--out", str(tmp_path)]) == 0
-    assert "reached False (the episode's limit, 3 ticks, ran out) in 0.6 s" in capsys.readouterr().out
+    assert "reached False (the episode's limit, 3 ticks, ran out; a world file's max_ticks or max_s, or tdp run's --max-ticks, sets it) in 0.6 s" in capsys.readouterr().out
     metrics = json.loads((tmp_path / "metrics.json").read_text())
     assert metrics["ticks"] == metrics["max_ticks"] == 3 and not metrics["reached"]
     with pytest.warns(UserWarning, match=r"--margin 0.708 on the command line"):  # 1 m cells: the flag it names
