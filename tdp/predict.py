@@ -114,7 +114,8 @@ class MotionPredictor:
             for step in range(1, ahead + 1):
                 moved = self._moved_into(track, tick - track.tick, step)
                 for cell in map(tuple, self._inside(np.vstack(moved)).tolist() if moved else []):
-                    found.setdefault(cell, step)
+                    if step < found.get(cell, math.inf):  # the earliest over every box, not the first box's
+                        found[cell] = step
         return found
 
     def may_reach(self, tick: int, ahead: int, cell: tuple[int, int], radius: float) -> bool:

@@ -198,6 +198,19 @@ def test_avoiding_boxes_leaves_the_exact_planner_on_the_oracles_way_where_no_box
     assert record["reached"] and record["trajectory"] == oracle_run(scenario, tdp.NavigatorConfig(), 600)["trajectory"]
 
 
+def test_a_cell_two_boxes_drive_into_arrives_at_the_earlier_of_their_ticks_whichever_box_is_tracked_first():
+    """Two boxes closing on row 5's column 15 from either side: the one on the left at a cell a tick gets there at
+    the fourth tick, the one on the right at two cells a tick at the third (hand-computed). The first box in the
+    tracks' list set the tick, so with the slow one first the cell was expected a tick late."""
+    predictor = MotionPredictor((20, 40))
+    predictor.observe(1, np.vstack([column(10), column(23)]))
+    predictor.observe(2, np.vstack([column(11), column(21)]))
+    for tracks in (predictor.tracks[:], predictor.tracks[::-1]):
+        predictor.tracks = tracks
+        arrivals = predictor.arrivals(2, 4)
+        assert [arrivals[(5, col)] for col in (12, 15, 17, 19)] == [1, 3, 2, 1]
+
+
 def test_arrivals_near_a_cell_are_the_arrivals_within_its_radius():
     """The filter that spares the lookout its work far from the robot (``near``) leaves out no cell within the
     radius: the boxes of test_a_box_moving_one_cell_a_tick..., and one coming down at 2 cells a tick."""
