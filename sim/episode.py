@@ -397,7 +397,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
         "scenario": scenario.name, "planner": config.planner, "updates_per_move": config.updates_per_move,
         "reached": reached, "time_s": tick * run.tick_s, "wall_s": wall_s, "ticks": tick, "max_ticks": max_ticks,
         "path_length_m": run.length_m, "oracle_reached": oracle_reached, "oracle_length_m": oracle_m,
-        "ratio": run.length_m / oracle_m if oracle_m else None,
+        "ratio": run.length_m / oracle_m if oracle_m and reached else None,  # as the grid's: both reached
         "contacts": run.contact_steps,
         "min_clearance_m": run.min_clearance, "mean_clearance_m": float(np.mean(run.clearances or [math.nan])),
         "detections": detection_records(run.results),

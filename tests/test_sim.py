@@ -142,11 +142,22 @@ def test_a_quick_worlds_tick_is_the_time_the_robot_takes_to_cross_a_cell(resolut
     assert speeds and all(0.15 - 1e-9 <= v <= 0.3 + 1e-9 for v in speeds)  # metres a second
 
 
+def test_a_robot_that_did_not_reach_the_goal_has_no_ratio_where_the_oracle_did():
+    """Ticks of 0.05 s: the robot crosses a quarter of a cell a tick, the grid's oracle a cell; in 40 ticks the
+    oracle arrives and the robot is a third of the way. Its ratio was its path so far over the oracle's, 0.4."""
+    world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (2, 27), max_ticks=40,
+                         tick_s=0.05)
+    metrics = run_episode(world, tdp.NavigatorConfig())
+    assert not metrics["reached"] and metrics["oracle_reached"] and metrics["oracle_length_m"] > 2.0
+    assert 0 < metrics["path_length_m"] < 1.5 and metrics["ratio"] is None
+
+
 def test_an_episode_whose_limit_runs_out_says_so_and_the_margins_flag(tmp_path, capsys):
     world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (27, 27), max_ticks=3)
     (tmp_path / "short.yaml").write_text(world.to_yaml())
     assert sim_command(["run", "--world", str(tmp_path / "short.yaml"), "--out", str(tmp_path)]) == 0
-    assert "reached False (the episode's limit, 3 ticks, ran out; a world file's max_ticks or max_s, or tdp run's --max-ticks, sets it) in 0.6 s" in capsys.readouterr().out
+    assert ("reached False (the episode's limit, 3 ticks, ran out; a world file's max_ticks or max_s, or tdp run's "
+            "--max-ticks, sets it) in 0.6 s") in capsys.readouterr().out
     metrics = json.loads((tmp_path / "metrics.json").read_text())
     assert metrics["ticks"] == metrics["max_ticks"] == 3 and not metrics["reached"]
     with pytest.warns(UserWarning, match=r"--margin 0.708 on the command line"):  # 1 m cells: the flag it names

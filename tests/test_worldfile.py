@@ -145,6 +145,7 @@ def test_quick_worlds_on_any_map_use_the_family_generator_and_keep_a_way_open(tm
     assert json.loads((tmp_path / "metrics.json").read_text())["reached"]
     assert tdp_command(["run", "--map", arena, "--start", "1", "3", "--goal", "47", "46", "--max-ticks", "5",
                         "--out", str(tmp_path)]) == 0
-    assert "reached: False (the episode's limit, 5 ticks, ran out; a world file's max_ticks or max_s, or tdp run's --max-ticks, sets it) in 5 ticks" in capsys.readouterr().out
+    assert ("reached: False (the episode's limit, 5 ticks, ran out; a world file's max_ticks or max_s, or tdp run's "
+            "--max-ticks, sets it) in 5 ticks") in capsys.readouterr().out
     done = run("-m", "tdp", "run", "--map", "tests/data/arena.map", "--out", str(tmp_path))
     assert done.returncode == 2 and "--map needs --start" in done.stderr
