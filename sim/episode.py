@@ -139,6 +139,9 @@ class _Run:
         if config.budget_ms is not None and config.budget_ms > 1e3 * self.tick_s:
             raise ValueError(f"budget_ms {config.budget_ms} is longer than the control period, a tick of "
                              f"{1e3 * self.tick_s:g} ms")
+        if round(self.tick_s * sim.physics_hz) < 1:  # a tick of no physics step: the robot would never move
+            raise ValueError(f"the world's tick, {self.tick_s:g} s, is shorter than half a physics step "
+                             f"(1/{sim.physics_hz} s): lengthen tick_s or raise SimConfig.physics_hz")
         self.world = SimWorld(client, scenario, self.cell_m, self.tick_s)
         self.grid = self.world.grid
         self.static = scenario.grid.inflate(sim.inflate_m / self.cell_m).occupied
@@ -359,7 +362,7 @@ def run_episode(scenario: tdp.Scenario, config: tdp.NavigatorConfig = tdp.Naviga
 
     Raises:
         ValueError: an argument of the wrong kind; no room for the robot at the start or the goal; a budget longer
-            than a tick; ``gui`` without a display.
+            than a tick; a tick shorter than half a physics step (no step would run); ``gui`` without a display.
 
     Warns:
         UserWarning: ``sim.margin_m`` below half a cell's diagonal (``margin_floor_m``), where the robot may not fit

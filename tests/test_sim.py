@@ -142,6 +142,14 @@ def test_a_quick_worlds_tick_is_the_time_the_robot_takes_to_cross_a_cell(resolut
     assert speeds and all(0.15 - 1e-9 <= v <= 0.3 + 1e-9 for v in speeds)  # metres a second
 
 
+def test_a_tick_shorter_than_a_physics_step_is_refused():
+    """A tick of 1 ms ran no physics step at 240 Hz: the robot stood still for 48,000 ticks and the run said only
+    that it had not arrived."""
+    world = tdp.Scenario(tdp.GridMap(np.zeros((30, 30), bool), resolution=0.1), (2, 2), (2, 27), tick_s=0.001)
+    with pytest.raises(ValueError, match=r"the world's tick, 0.001 s, is shorter than half a physics step"):
+        run_episode(world, tdp.NavigatorConfig())
+
+
 def test_a_robot_that_did_not_reach_the_goal_has_no_ratio_where_the_oracle_did():
     """Ticks of 0.05 s: the robot crosses a quarter of a cell a tick, the grid's oracle a cell; in 40 ticks the
     oracle arrives and the robot is a third of the way. Its ratio was its path so far over the oracle's, 0.4."""
