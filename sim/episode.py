@@ -61,11 +61,13 @@ class SimConfig:
             raise ValueError("cost_scaling_factor and inflation_radius go together (nav2's inflation layer); got "
                              f"{inflation[0]!r} and {inflation[1]!r}")
         optional = ("cost_scaling_factor", "inflation_radius")
-        for name in ("margin_m", "horizon_s", "goal_tolerance_m", "max_speed") + optional:
+        for name in ("margin_m", "horizon_s") + optional:
             value = getattr(self, name)
             if value is None and name in optional:
                 continue
             checks.number(value, name, 0)
+        for name in ("goal_tolerance_m", "max_speed"):  # at 0 the robot never arrives: it never moves, or never close
+            checks.number(getattr(self, name), name, 0, inclusive=False)
         for name in ("physics_hz", "control_hz", "frame_every"):
             checks.integer(getattr(self, name), name, 1)
         if self.physics_hz % self.control_hz:

@@ -370,6 +370,14 @@ def test_a_robot_yielding_to_a_box_in_pybullet_stays_put():
     assert np.mean(moved[Mode.YIELD]) < 0.3 * np.mean(moved[Mode.DP])
 
 
+@pytest.mark.parametrize("name", ["max_speed", "goal_tolerance_m"])
+def test_a_robot_that_cannot_move_or_cannot_arrive_is_refused(name):
+    """At 0 m/s the robot stood still, and with no tolerance it was never close enough: every episode ran to its
+    limit and said only that the robot had not arrived."""
+    with pytest.raises(ValueError, match=f"{name} must be a number > 0, got 0"):
+        SimConfig(**{name: 0.0})
+
+
 def test_sim_config_takes_both_inflation_parameters_or_neither():
     with pytest.raises(ValueError, match="go together"):
         SimConfig(cost_scaling_factor=3.0)
