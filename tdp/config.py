@@ -29,7 +29,8 @@ class NavigatorConfig:
     planner: "exact" (default: the goal layer repaired exactly every tick, :class:`tdp.ExactPlanner`; RESULTS.md's
     equal-time benchmark finds it the best for a user who does not choose), "accelerating" (the paper's accelerating
     nodes, :class:`tdp.Navigator`) or "plain-dp" (the paper's baseline: K synchronous DP iterations per move). The
-    exact planner reads the stencil, ``d_max`` and ``budget_ms`` (then its repair is anytime: see ExactPlanner);
+    exact planner reads the stencil, ``d_max``, ``budget_ms`` (then its repair is anytime: see ExactPlanner) and
+    ``avoid_boxes`` (with ``avoid_ticks`` and ``meet_ticks``);
     ``accelerating=False`` of earlier versions is ``planner="plain-dp"``.
     nodes: number of nodes of the uniform lattice (its spacing s follows from the map's area);
     spacing: lattice spacing s in cells, overriding ``nodes`` when given.
@@ -41,7 +42,8 @@ class NavigatorConfig:
     hour (``MAX_BUDGET_MS``).
     detect_window, detect_rise: J and U of the blockage test (U defaults to J - 1); J at most 1000
     (``MAX_DETECT_WINDOW``).
-    d_max: cap of the goal layer (eq. 5). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
+    d_max: cap of the goal layer (eq. 5): a cell farther than that from the goal reads as cut off, and a robot there
+    waits (default inf). neighbourhood, corner_cutting: the stencil (ARCHITECTURE §4).
     placement: where a lattice node whose centre is on an obstacle goes: "free" (the free cell of its lattice cell
     nearest the centre), "drop" (left out, the paper) or "nudge" (a free cell within s/4); see
     :func:`tdp.nodes.place_nodes`.
