@@ -113,7 +113,7 @@ def episode_ticks(scenario: tdp.Scenario, sim: SimConfig) -> int:
     at ``sim.max_speed``. On a map of 1 m cells with 0.2 s ticks the robot crosses a cell in 10 ticks: the grid's
     limit ended a 745 m route through a 512 x 512 map of rooms after 406 m."""
     cells_per_tick = sim.max_speed * scenario.tick_s / scenario.grid.resolution
-    if scenario.max_ticks or cells_per_tick <= 0:
+    if scenario.max_ticks:
         return scenario.tick_limit
     return math.ceil(scenario.tick_limit / min(1.0, cells_per_tick))
 

@@ -126,7 +126,6 @@ def test_an_episode_on_a_coarse_map_lasts_as_long_as_the_robot_needs_to_cross_it
     assert episode_ticks(coarse, SimConfig()) == 3200  # a tenth of a cell a tick
     assert episode_ticks(coarse, SimConfig(max_speed=1.0)) == 1600
     assert episode_ticks(fine, SimConfig(max_speed=2.0)) == 320  # never below the grid's limit
-    assert episode_ticks(coarse, SimConfig(max_speed=0.0)) == 320
     bounded = tdp.Scenario(coarse.grid, (0, 0), (29, 49), max_ticks=77)
     assert episode_ticks(bounded, SimConfig()) == 77  # the world's own limit stands
 
