@@ -183,7 +183,7 @@ class ExactPlanner:
         searched = time.perf_counter()
         if self.lookout:
             cleared = self._clear(step)
-            mode, step = (Mode.YIELD, None) if step is not None and cleared is None else (mode, cleared)
+            mode, step = (Mode.YIELD if (step is None) != (cleared is None) else mode), cleared
         result = TickResult(mode=mode, next_cell=step)
         result.timings = {"converge": repaired - began, "search": searched - repaired}
         if self.lookout:
@@ -192,10 +192,12 @@ class ExactPlanner:
 
     def _clear(self, step: tuple[int, int] | None) -> tuple[int, int] | None:
         """With ``avoid_boxes``: the tick's move vetted against the tracked boxes' predicted arrivals
-        (:meth:`tdp.lookout.BoxLookout.clear_move`: the move, none to yield, or a step aside)."""
+        (:meth:`tdp.lookout.BoxLookout.clear_move`: the move, none to yield, or a step aside), and on a tick that
+        gives no move (a budgeted repair not yet at the robot, no way on the map) a step aside from a box about to
+        drive onto the robot."""
         self.lookout.predict()
-        if step is None:
-            return None
+        if self.robot == self.engine.goal:
+            return step
         legal_moves = partial(self.moves.legal, self.engine.occupied, self.robot)
         return self.lookout.clear_move(self.robot, step, self.route, legal_moves, self._goal_values)
 

@@ -4,7 +4,7 @@ import pytest
 
 import tdp
 from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
-from tdp.contract import WorldFeed
+from tdp.contract import Mode, WorldFeed
 from tdp.predict import MotionPredictor, clusters
 from tdp.random_worlds import make_world
 from tdp.simulate import oracle_run
@@ -190,6 +190,23 @@ def test_avoiding_boxes_keeps_the_robot_out_of_their_way(planner, size, seed):
         hits[avoid], modes[avoid] = record["hits"], set(record["modes"])
     assert hits[False] > 0 and hits[True] == 0
     assert tdp.Mode.YIELD in modes[True] and tdp.Mode.YIELD not in modes[False]
+
+
+def test_the_exact_planner_steps_aside_from_a_box_on_a_tick_that_gives_no_move():
+    """No way to the goal (its corner walled off): every tick waits, and a box driving along the robot's row sat on
+    it for 4 ticks; the lookout vetted only moves. A budgeted repair not yet at the robot gives such ticks too (on
+    moving-target 200² at 0.3 ms: 53 hit ticks on two worlds, none now)."""
+    occupied = np.zeros((20, 20), bool)
+    occupied[0:3, 16] = occupied[3, 16:] = True
+    box = tdp.Obstacle(box=(9, 0, 11, 2), waypoints=[(9, 18)], speed=0.5)
+    scenario = tdp.Scenario(tdp.GridMap(occupied), (10, 10), (0, 19), obstacles=[box], max_ticks=60)
+    hits, stepped = {}, {}
+    for avoid in (False, True):
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=avoid))
+        hits[avoid] = record["hits"]
+        path = record["trajectory"]
+        stepped[avoid] = {mode for mode, here, there in zip(record["modes"], path, path[1:]) if here != there}
+    assert hits == {False: 4, True: 0} and stepped == {False: set(), True: {Mode.YIELD}}
 
 
 def test_avoiding_boxes_leaves_the_exact_planner_on_the_oracles_way_where_no_box_comes_near():
