@@ -81,9 +81,18 @@ class Obstacle:
     def corner(self, tick: int) -> tuple[float, float]:
         """Top-left corner (row, col) at ``tick`` (a number), in cells (fractional while between cells)."""
         tick = checks.number(tick, "tick")
-        start = self.appear_at or 0
-        points = [(float(self.box[0]), float(self.box[1]))] + [(float(r), float(c)) for r, c in self.waypoints]
-        return _polyline_point(points, self.speed * max(0, tick - start))
+        return _polyline_point(self._points(), self.speed * max(0, tick - (self.appear_at or 0)))
+
+    def travel(self, tick: int) -> float:
+        """Cells the corner moves along its way from ``tick`` - 1 to ``tick``: its speed, or less where it starts or
+        reaches its last waypoint on the way."""
+        tick, start, points = checks.number(tick, "tick"), self.appear_at or 0, self._points()
+        length = sum(math.dist(a, b) for a, b in zip(points, points[1:]))
+        return min(self.speed * max(0, tick - start), length) - min(self.speed * max(0, tick - 1 - start), length)
+
+    def _points(self) -> list[tuple[float, float]]:
+        """The corner's way: where it starts, then each waypoint."""
+        return [(float(self.box[0]), float(self.box[1]))] + [(float(r), float(c)) for r, c in self.waypoints]
 
     def footprint(self, tick: int) -> tuple[int, int, int, int]:
         """(r0, c0, r1, c1) of the cells covered at ``tick`` (the corner rounded to the nearest cell)."""
@@ -199,9 +208,9 @@ class Scenario:
         every whole cell of its way before its place at ``tick``: a hit that the occupancy at ``tick`` does not show
         (a box 2 cells long at 8 cells a tick would otherwise cross a robot unseen 3 times in 4)."""
         tick, (r, c) = checks.number(tick, "tick"), checks.pair(cell, "cell")
-        for obstacle in self.obstacles:
-            steps = math.ceil(obstacle.speed)
-            for when in (tick - 1 + k / steps for k in range(1, steps)):
+        for obstacle in (o for o in self.obstacles if o.speed > 1):  # a cell of its way every 1 / speed of a tick,
+            cells = math.ceil(obstacle.travel(tick))  # as far as it went (a box at 10^6 cells a tick stops at its end)
+            for when in (tick - 1 + k / obstacle.speed for k in range(1, cells)):
                 r0, c0, r1, c1 = obstacle.footprint(when)
                 if obstacle.present(when) and r0 <= r < r1 and c0 <= c < c1:
                     return True
