@@ -181,14 +181,12 @@ class ExactPlanner:
         on_target = exact and self._target == self.engine.goal
         mode = (Mode.EXACT if moving else Mode.WAIT) if on_target else Mode.BEHIND
         searched = time.perf_counter()
+        timings = {"converge": repaired - began, "search": searched - repaired}
         if self.lookout:
             cleared = self._clear(step)
             mode, step = (Mode.YIELD if (step is None) != (cleared is None) else mode), cleared
-        result = TickResult(mode=mode, next_cell=step)
-        result.timings = {"converge": repaired - began, "search": searched - repaired}
-        if self.lookout:
-            result.timings["predict"] = time.perf_counter() - searched
-        return result
+            timings["predict"] = time.perf_counter() - searched
+        return TickResult(mode=mode, next_cell=step, timings=timings)
 
     def _clear(self, step: tuple[int, int] | None) -> tuple[int, int] | None:
         """With ``avoid_boxes``: the tick's move vetted against the tracked boxes' predicted arrivals
