@@ -7,11 +7,10 @@ A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on
 random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named scenarios moving-blockage and
 sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
 and box avoidance off or on; exact replanning (K column "exact") with box avoidance off or on. Per group, K and
-setting: worlds, reached %, collisions, hits (ticks a box sat on the
-robot), mean and max ratio to the oracle (over the worlds the oracle reached), detections and the fraction the exact
-pair distances justify (as in ``benchmarks.worlds``; a detection made ahead of a predicted closure counts as
-justified only if the closure comes within the look-back window), yields, and for the named scenarios the ticks from
-the change to the turn.
+setting: worlds, reached %, collisions, hits (ticks a box sat on the robot), mean and max ratio to the oracle (over
+the worlds the oracle reached), detections and the fraction the exact pair distances justify (as in
+``benchmarks.worlds``; a detection made ahead of a predicted closure counts as justified only if the closure comes
+within the look-back window), yields, and for the named scenarios the ticks from the change to the turn.
 """
 from __future__ import annotations
 
@@ -44,7 +43,8 @@ def planner_k(row: dict) -> str:
 def summarise(table: list[dict]) -> list[dict]:
     """Per group, K (or the exact planner) and setting."""
     out = []
-    ks = dict.fromkeys(map(planner_k, sorted(table, key=lambda r: (r["planner"] == "exact", r["updates_per_move"] or 0))))
+    ks = [str(k) for k in sorted({r["updates_per_move"] for r in table if r["planner"] == "accelerating"})]
+    ks += ["exact"] if any(r["planner"] == "exact" for r in table) else []
     for group in dict.fromkeys(r["group"] for r in table):
         for k in ks:
             for (ticks, avoid), label in SETTINGS.items():
