@@ -100,23 +100,25 @@ class MotionPredictor:
     def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
-        first such tick (1 = the next). A box slower than a cell per tick moves a cell at a time, every 1 / speed
-        ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 / speed) ticks after
-        it, and only those ticks are flagged (a box seen every other tick is not expected every tick), a move
-        overdue (no edge seen since its window began) from the next tick on; a faster one sweeps as in
+        first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time,
+        every 1 / speed ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 /
+        speed) ticks after it, and only those ticks are flagged (a box seen every other tick is not expected every
+        tick), a move overdue (no edge seen since its window began) from the next tick on; a faster one sweeps as in
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
         than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
         within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
-        found: dict[tuple[int, int], int] = {}
-        for track in self._moving(tick, ahead, near):
-            if across is not None and not _crosses(track.velocity, across):
-                continue
-            for step in range(1, ahead + 1):
-                moved = self._moved_into(track, tick - track.tick, step)
-                for cell in map(tuple, self._inside(np.vstack(moved)).tolist() if moved else []):
-                    if step < found.get(cell, math.inf):  # the earliest over every box, not the first box's
-                        found[cell] = step
-        return found
+        moves = [(track.edge, *self._moves(track, tick - track.tick, ahead))
+                 for track in self._moving(tick, ahead, near) if across is None or _crosses(track.velocity, across)]
+        if not moves:
+            return {}
+        cells = np.vstack([_shifted(edge, offsets) for edge, offsets, _ in moves])
+        steps = np.concatenate([np.repeat(steps, len(edge)) for edge, _, steps in moves])
+        inside = self._inside(cells)
+        flat, steps = cells[inside, 0] * self.shape[1] + cells[inside, 1], steps[inside]
+        by_step = np.argsort(steps, kind="stable")
+        first, index = np.unique(flat[by_step], return_index=True)  # a cell's first place: its earliest step
+        rows, cols = np.divmod(first, self.shape[1])
+        return dict(zip(zip(rows.tolist(), cols.tolist()), steps[by_step][index].tolist()))
 
     def may_reach(self, tick: int, ahead: int, cell: tuple[int, int], radius: float) -> bool:
         """Whether a tracked box may come within ``radius`` cells (in rows and in cols) of ``cell`` in the ``ahead``
@@ -131,37 +133,43 @@ class MotionPredictor:
                 and (near is None or _may_reach(track, tick + ahead, *near))]
 
     def _inside(self, cells: np.ndarray) -> np.ndarray:
-        """The rows of ``cells`` inside the map."""
-        inside = (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
-        return cells[inside]
+        """Which rows of ``cells`` lie inside the map (a bool per row)."""
+        return (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
 
     @staticmethod
-    def _moved_into(track: Track, waited: int, step: int) -> list[np.ndarray]:
-        """The cells a track's edge may move into at ``step`` ticks from now, ``waited`` ticks after its last edge
-        was seen. A slow box seen not to move since (a move overdue: its period is not a whole number of ticks, or
-        it slowed) has made none of its moves yet: they are counted from now on at the least."""
-        speed = track.speed
-        elapsed = waited + step
-        if speed >= 1.0:
-            return [track.edge + offset for offset in _swept_offsets(track.velocity * (elapsed - 1),
-                                                                     track.velocity * elapsed)]
-        period = 1.0 / speed
-        latest_moves = min(elapsed // math.floor(period), 1 + (step - 1) // math.floor(period))  # by then at most,
-        earliest_moves = (step - 1) // math.ceil(period)  # and by the tick before at the least
-        direction = track.velocity / speed
-        units = {tuple(unit) for unit in np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64)}
-        return [track.edge + moves * np.array(unit) for moves in range(earliest_moves + 1, latest_moves + 1)
-                for unit in units if any(unit)]
+    def _moves(track: Track, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
+        """The offsets ((m, 2) cells) a track's edge may move by in the next ``ahead`` ticks, ``waited`` ticks after
+        its last edge was seen, and the tick (1 = the next) of each. A slow box seen not to move since (a move
+        overdue: its period is not a whole number of ticks, or it slowed) has made none of its moves yet: they are
+        counted from now on at the least."""
+        if track.speed >= 1.0:
+            elapsed = waited + np.arange(1, ahead + 1)[:, None]
+            offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
+            return offsets, segment + 1
+        period = 1.0 / track.speed
+        direction = track.velocity / track.speed
+        units = np.array([unit for unit in {tuple(unit) for unit in np.stack([np.floor(direction),
+                                                                              np.ceil(direction)]).astype(np.int64)}
+                          if any(unit)])
+        moves = [(count, step) for step in range(1, ahead + 1)
+                 for count in range((step - 1) // math.ceil(period) + 1,  # by the tick before at the least,
+                                    min((waited + step) // math.floor(period),  # by then at most
+                                        1 + (step - 1) // math.floor(period)) + 1)]
+        counts, steps = np.array(moves, np.int64).reshape(-1, 2).T
+        return (counts[:, None, None] * units[None]).reshape(-1, 2), np.repeat(steps, len(units))
 
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
         after ``tick`` up to ``tick + horizon``, at constant velocity; the edges' current cells left out."""
-        found = [track.edge + offset for track in (self._moving(tick) if horizon >= 1 else [])
-                 for offset in _swept_offsets(track.velocity * (tick - track.tick),
-                                              track.velocity * (tick + horizon - track.tick))]
+        found = []
+        for track in self._moving(tick) if horizon >= 1 else []:
+            offsets, _ = _swept_offsets(track.velocity[None] * (tick - track.tick),
+                                        track.velocity[None] * (tick + horizon - track.tick))
+            found.append(_shifted(track.edge, offsets))
         if not found:
             return np.zeros((0, 2), np.int64)
-        return self._inside(np.unique(np.vstack(found), axis=0))
+        cells = np.unique(np.vstack(found), axis=0)
+        return cells[self._inside(cells)]
 
 
 def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -> bool:
@@ -173,15 +181,25 @@ def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -
     return max(r0 - cell[0], cell[0] - r1, c0 - cell[1], cell[1] - c1, 0) <= radius + reach
 
 
-def _swept_offsets(now: np.ndarray, then: np.ndarray) -> list[np.ndarray]:
-    """The whole-cell offsets an edge displaced from ``now`` to ``then`` (cells, fractional) may occupy on the way:
-    both the floor and the ceiling of each coordinate along the segment, since a world may round either way;
-    (0, 0), where the edge is, left out."""
-    steps = 2 * max(1, math.ceil(float(np.abs(then - now).max())))
-    points = now + (then - now) * (np.arange(steps + 1)[:, None] / steps)
-    corners = np.vstack([np.stack([rows(points[:, 0]), cols(points[:, 1])], axis=1)
-                         for rows in (np.floor, np.ceil) for cols in (np.floor, np.ceil)]).astype(np.int64)
-    return [offset for offset in np.unique(corners, axis=0) if offset.any()]
+def _shifted(edge: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """The cells ((m n, 2)) of an ``edge`` ((n, 2) cells) shifted by each of ``offsets`` ((m, 2)) in turn."""
+    return (edge[None] + offsets[:, None]).reshape(-1, 2)
+
+
+def _swept_offsets(now: np.ndarray, then: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The whole-cell offsets an edge displaced from ``now[s]`` to ``then[s]`` ((S, 2) cells, fractional: S
+    segments) may occupy on the way: both the floor and the ceiling of each coordinate at points along the segment,
+    since a world may round either way; (0, 0), where the edge is, left out. Returns the offsets (m, 2), each
+    segment's distinct and the segments in order, and the segment of each (m,)."""
+    points_per = 2 * np.maximum(1, np.ceil(np.abs(then - now).max(axis=1))).astype(np.int64)[:, None]
+    fractions = np.minimum(np.arange(points_per.max() + 1), points_per) / points_per  # the last point repeated
+    points = now[:, None] + (then - now)[:, None] * fractions[:, :, None]
+    corners = np.concatenate([np.stack([rows(points[..., 0]), cols(points[..., 1])], axis=-1)
+                              for rows in (np.floor, np.ceil) for cols in (np.floor, np.ceil)], axis=1)
+    segment = np.repeat(np.arange(len(now)), corners.shape[1])
+    found = np.unique(np.column_stack([segment, corners.reshape(-1, 2).astype(np.int64)]), axis=0)
+    found = found[found[:, 1:].any(axis=1)]
+    return found[:, 1:], found[:, 0]
 
 
 def clusters(cells: np.ndarray) -> list[np.ndarray]:
