@@ -49,6 +49,8 @@ class BoxLookout:
         became = np.vstack(self._became_occupied) if self._became_occupied else np.zeros((0, 2), np.int64)
         self._became_occupied = []
         self.predictor.observe(self.ticks, became)
+        if not self.config.predict_ticks:
+            return False  # avoid_boxes alone: nothing is held
         cells = self.predictor.entering(self.ticks, self.config.predict_ticks)
         occupied = self.engine.occupied
         cells = cells[~occupied[cells[:, 0], cells[:, 1]]]

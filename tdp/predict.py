@@ -75,7 +75,7 @@ class MotionPredictor:
         matched: set[int] = set()
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
-            centre = edge.mean(axis=0)
+            centre = edge.sum(axis=0) / len(edge)  # the mean, without np.mean's dispatch
             index = self._match(edge, centre, tick, previous, matched)
             velocity, seen = None, ((tick, centre),)
             if index is not None:
@@ -204,7 +204,7 @@ def _swept_offsets(now: np.ndarray, then: np.ndarray) -> tuple[np.ndarray, np.nd
 
 def clusters(cells: np.ndarray) -> list[np.ndarray]:
     """The 8-connected groups of ``cells`` ((n, 2) row, col), each as an (m, 2) array."""
-    left = {tuple(map(int, cell)) for cell in cells}
+    left = set(map(tuple, np.asarray(cells, np.int64).reshape(-1, 2).tolist()))
     groups = []
     while left:
         frontier = [left.pop()]
