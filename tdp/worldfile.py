@@ -41,7 +41,7 @@ import numpy as np
 import yaml
 
 from . import checks
-from .grid import GridMap, load_map, rectangles
+from .grid import MAX_CELLS, GridMap, load_map, rectangles
 from .world import Obstacle, Scenario
 
 UNITS = ("cells", "metres")
@@ -124,6 +124,8 @@ def load_world(path: str | Path) -> Scenario:
     cells = {key: place.cell(data[key], key) for key in ("start", "goal")}
     waypoints = [place.cell(w, f"target.waypoints[{i}]") for i, w in enumerate(_list(read, target, "waypoints",
                                                                                          "target."))]
+    if "target" in data and not waypoints:
+        read.fail("target.waypoints", "a target needs a waypoint to walk to (leave target out for a goal that stays)")
     timing = {"change_tick": place.tick(data, "change_tick", "change_s"),
               "max_ticks": place.tick(data, "max_ticks", "max_s", low=1),
               "blocking": None if data.get("blocking") is None else read.integer(data["blocking"], "blocking")}
@@ -175,6 +177,8 @@ def _map(read: _Reader, value, folder: Path) -> tuple[GridMap, dict]:
         return grid, {**spec, "file": str(file.resolve())}
     spec = read.mapping(value, "map", _MAP_INLINE)
     rows, cols = (read.integer(spec.get(k), f"map.{k}", 1) for k in ("rows", "cols"))
+    if rows * cols > MAX_CELLS:  # as a map file's: a typo's 100000 x 100000 took all memory before any check
+        read.fail("map", f"{rows} x {cols} cells is more than the {MAX_CELLS} cells tdp reads")
     occupied = np.zeros((rows, cols), bool)
     for i, box in enumerate(_list(read, spec, "obstacles", "map.")):
         r0, c0, r1, c1 = read.quad(box, f"map.obstacles[{i}]", "cells")

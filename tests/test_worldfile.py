@@ -87,6 +87,8 @@ BASE = "map: {rows: 20, cols: 30, obstacles: [[0, 10, 15, 12]]}\nstart: [1, 1]\n
                                          r"max_ticks\)"),
     (BASE + "units: metres\nchange_tick: 4\n", r"change_tick: a key of the other units"),
     (BASE + "target: {waypoints: [[10, 1]], speed: 0}\n", r"yaml: target.speed: expected a number > 0"),
+    (BASE + "target: {speed: 0.3}\n", r"target.waypoints: a target needs a waypoint"),
+    ("map: {rows: 100000, cols: 100000}\nstart: [1, 1]\ngoal: [2, 2]\n", r"map: 100000 x 100000 cells is more than"),
 ])
 def test_mistakes_in_a_world_file_name_the_file_and_the_key(tmp_path, text, message):
     path = tmp_path / "bad-world.yaml"
