@@ -23,7 +23,7 @@ class Mode(str, Enum):
     layer repaired exactly for its route (``EXACT``) or, with a budget that ran out first, as far as the repair got or
     towards where a moving target was (``BEHIND``), D* Lite's search (``DSTAR``), stayed where it was (``WAIT``), or
     gave way to a box (``YIELD``, with ``avoid_boxes``): stayed because a box is predicted to enter the cell it would
-    have moved to, or - the exact planner, on a tick that gave no move - stepped aside from a box about to drive onto it.
+    have moved to, or, on a tick that gave no move, stepped aside from a box about to drive onto it.
     A mode is written (``str``, JSON) as its value: "dp", "backup", ...; code compares modes with the members, never
     with strings."""
 

@@ -197,13 +197,14 @@ class Navigator:
         following = Mode.BACKUP if self.backup.follow is Follow.BACKUP else Mode.DP
         result.mode = following if moving else Mode.WAIT
         result.subgoal = self.backup.subgoal
-        if self.config.avoid_boxes and moving:
+        if self.config.avoid_boxes and self.robot != self.goal:
             with clock("predict"):
                 legal_moves = partial(self.moves.legal, self.engine.occupied, self.robot)
-                result.next_cell = self.lookout.clear_move(self.robot, result.next_cell, self.route, legal_moves,
-                                                           self._followed_values)
-                if result.next_cell is None and self.robot != self.goal:
+                cleared = self.lookout.clear_move(self.robot, result.next_cell, self.route, legal_moves,
+                                                  self._followed_values)
+                if (cleared is None) != (result.next_cell is None):  # held back, or stepped aside from a wait
                     result.mode = Mode.YIELD
+                result.next_cell = cleared
 
     def _search(self, result: TickResult, step: Step) -> None:
         """Search the node graph R -> G for a backup (:func:`tdp.backup.plan_backup`) and follow it; with none,

@@ -192,7 +192,8 @@ def test_avoiding_boxes_keeps_the_robot_out_of_their_way(planner, size, seed):
     assert tdp.Mode.YIELD in modes[True] and tdp.Mode.YIELD not in modes[False]
 
 
-def test_the_exact_planner_steps_aside_from_a_box_on_a_tick_that_gives_no_move():
+@pytest.mark.parametrize("planner", ["exact", "accelerating", "plain-dp"])
+def test_every_planner_steps_aside_from_a_box_on_a_tick_that_gives_no_move(planner):
     """No way to the goal (its corner walled off): every tick waits, and a box driving along the robot's row sat on
     it for 4 ticks; the lookout vetted only moves. A budgeted repair not yet at the robot gives such ticks too (on
     moving-target 200² at 0.3 ms: 53 hit ticks on two worlds, none now)."""
@@ -202,7 +203,7 @@ def test_the_exact_planner_steps_aside_from_a_box_on_a_tick_that_gives_no_move()
     scenario = tdp.Scenario(tdp.GridMap(occupied), (10, 10), (0, 19), obstacles=[box], max_ticks=60)
     hits, stepped = {}, {}
     for avoid in (False, True):
-        record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=avoid))
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(planner=planner, avoid_boxes=avoid))
         hits[avoid] = record["hits"]
         path = record["trajectory"]
         stepped[avoid] = {mode for mode, here, there in zip(record["modes"], path, path[1:]) if here != there}
