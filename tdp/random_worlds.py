@@ -36,6 +36,9 @@ CELL_M = 0.1
 #: The tick of the worlds made here, in seconds per metre of a cell: 0.2 s on CELL_M, the time a robot at 0.5 m/s
 #: takes to cross a cell, so that boxes at 0.3-0.6 cells a tick move at a third to a half of its speed on any map.
 TICK_S_PER_M = 2.0
+#: A quick world's tick limit in ticks per move of the shortest route on its map without boxes (boxes_on_map): room to
+#: wait for boxes and to go round them, as a random world's 6 x size is about 4 times its route.
+ROUTE_TICKS = 4
 #: The generator's version, part of a sweep's key for a family's world: a journal's episodes on worlds an earlier
 #: version drew are run again, not read as this one's. 2 (2026-11-30): the clutter's count no longer grows with the
 #: map's area while its pieces grow with its side (at 500 cells a side cluttered worlds were 68 % obstacles, without
@@ -365,7 +368,9 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     way along and stays. Deterministic for a given seed. Its tick (``tick_s``, for runners on a clock as PyBullet's)
     is the time a robot at 0.5 m/s takes to cross a cell of the map (TICK_S_PER_M): 0.2 s on 0.1 m cells, 2 s on a
     MovingAI map's 1 m cells, where the boxes at 0.2 s ticks would have moved at 1.5-3 m/s and rammed a 0.5 m/s robot.
-    No ``max_ticks`` of its own: an episode gets the default limit.
+    Its ``max_ticks`` is 4 times the moves of the shortest route on the map without boxes, at least the default 4 (H
+    + W): a maze's route is many times its side (a 1-cell maze of 256² 8,744 moves, a maze of 8-cell corridors of 512²
+    5,013), and the default limit ran out on the way.
 
     Raises:
         ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
@@ -411,6 +416,7 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
         obstacles.append(plug)
     return Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
                     blocking=len(obstacles) - 1 if blockage else None, tick_s=TICK_S_PER_M * grid.resolution,
+                    max_ticks=max(4 * sum(grid.shape), ROUTE_TICKS * (len(route) - 1)),
                     description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
 
 

@@ -457,6 +457,24 @@ def test_a_quick_world_with_fewer_boxes_than_asked_says_so():
         assert len(boxes_on_map(tdp.GridMap(np.zeros((60, 60), bool)), (0, 0), (59, 59), boxes=3).obstacles) == 3
 
 
+def test_a_quick_world_on_a_maze_gives_the_robot_ticks_for_its_route():
+    """A 1-cell maze of 128²: its route is 1,372 moves, and the default limit of 4 (H + W) = 1,024 ticks ran out on
+    the way (the summary said so; the robot never arrived). A quick world's limit is 4 times its route's moves."""
+    from tdp.random_worlds import boxes_on_map, maze
+
+    occupied = maze(128, 1, seed=1)
+    free = np.argwhere(~occupied)
+    start, goal = tuple(map(int, free[0])), tuple(map(int, free[-1]))
+    with pytest.warns(UserWarning, match="only 0 of the 3 boxes"):
+        world = boxes_on_map(tdp.GridMap(occupied), start, goal)
+    field = tdp.DistanceField(world.grid, goal)
+    field.converge()
+    moves = len(field.path(start)) - 1
+    assert moves > 4 * 256 and world.tick_limit == 4 * moves
+    episode = tdp.simulate(world)
+    assert episode.reached and episode.ticks == moves
+
+
 def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     """The same fuzz, on the world's side: boxes_on_map truncated boxes=2.5 to 2 and died on a list or infinity
     (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError); a scenario's occupancy, target,
