@@ -3,8 +3,8 @@ for early blockage predictions" (ARCHITECTURE §5.7).
 
 A box moving over the grid shows, tick by tick, a leading edge: the cells that become occupied. Those cells are
 grouped into 8-connected clusters; a cluster is matched to the track whose last edge it could have come from (a
-similar number of cells, a centre within ``max_speed`` cells per elapsed tick), and the displacement of the
-centres over the ticks between them is the track's velocity. A track whose edge is not seen again within the
+similar number of cells, moved within ``max_speed`` cells per elapsed tick: :func:`edge_shift`), and its
+displacement over the ticks between them is the track's velocity. A track whose edge is not seen again within the
 time it takes to move one cell (at its velocity, plus a tick) has stopped and is dropped.
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
@@ -32,7 +32,7 @@ HISTORY = 4
 class Track:
     """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, its ``velocity``
     (rows, cols per tick, over its last HISTORY edges; None until it has been matched once), and those edges'
-    (tick, centre)."""
+    (tick, position): the first edge's centre, moved on by each :func:`edge_shift` since."""
 
     edge: np.ndarray
     tick: int
@@ -43,12 +43,11 @@ class Track:
 
     def __post_init__(self):
         self.speed = 0.0 if self.velocity is None else float(np.abs(self.velocity).max())
-        low, high = self.edge.min(axis=0), self.edge.max(axis=0)
-        self.bounds = (int(low[0]), int(low[1]), int(high[0]), int(high[1]))
+        self.bounds = _bounds(self.edge)
 
     @property
-    def centre(self) -> np.ndarray:
-        """The last edge's centre."""
+    def position(self) -> np.ndarray:
+        """Where the track is (rows, cols): its first edge's centre moved on by each shift seen since."""
         return self.seen[-1][1]
 
     def alive_at(self, tick: int, min_speed: float) -> bool:
@@ -75,24 +74,25 @@ class MotionPredictor:
         matched: set[int] = set()
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
-            centre = edge.sum(axis=0) / len(edge)  # the mean, without np.mean's dispatch
-            index = self._match(edge, centre, tick, previous, matched)
-            velocity, seen = None, ((tick, centre),)
+            bounds = _bounds(edge)
+            index = self._match(edge, bounds, tick, previous, matched)
+            velocity, seen = None, ((tick, edge.sum(axis=0) / len(edge)),)  # the centre, without np.mean's dispatch
             if index is not None:
                 matched.add(index)
-                velocity, seen = _continued(previous[index], tick, centre)
+                velocity, seen = _continued(previous[index], tick, edge_shift(previous[index].bounds, bounds))
             tracks.append(Track(edge, tick, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
-    def _match(self, edge: np.ndarray, centre: np.ndarray, tick: int, previous: list[Track],
+    def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
                taken: set[int]) -> int | None:
-        """The previous track this edge (its cells and their ``centre``) most plausibly continues, or None."""
+        """The previous track this edge (its cells and their ``bounds``) most plausibly continues - the nearest by
+        :func:`edge_shift` within the reach of ``max_speed``, of a similar size -, or None."""
         best, best_distance = None, math.inf
         for i, track in enumerate(previous):
             elapsed = tick - track.tick
             if i in taken or elapsed <= 0 or not 0.5 <= len(edge) / len(track.edge) <= 2.0:
                 continue
-            distance = float(np.abs(centre - track.centre).max())
+            distance = float(np.abs(edge_shift(track.bounds, bounds)).max())
             if 0 < distance <= self.max_speed * elapsed + 0.5 and distance < best_distance:
                 best, best_distance = i, distance
         return best
@@ -221,15 +221,33 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
     return groups
 
 
-def _continued(track: Track, tick: int, centre: np.ndarray) -> tuple[np.ndarray, tuple]:
-    """The velocity and edge history of ``track`` once its next edge (``centre``) is seen at ``tick``: the mean
-    velocity over its last HISTORY edges; a box whose edge moved against its velocity turned back, and is taken to
-    come back at the speed it went, its history starting again from this edge (a mean over edges on both sides of
-    the turn says it barely moves)."""
-    if track.velocity is not None and float(np.dot(centre - track.centre, track.velocity)) < 0:
-        return -track.velocity, ((tick, centre),)
-    seen = (track.seen + ((tick, centre),))[-HISTORY:]
+def _continued(track: Track, tick: int, shift: np.ndarray) -> tuple[np.ndarray, tuple]:
+    """The velocity and edge history of ``track`` once its next edge is seen at ``tick``, ``shift`` from its last
+    (:func:`edge_shift`): the mean velocity over its last HISTORY edges; a box whose edge moved against its velocity
+    turned back, and is taken to come back at the speed it went, its history starting again from this edge (a mean
+    over edges on both sides of the turn says it barely moves)."""
+    position = track.position + shift
+    if track.velocity is not None and float(np.dot(shift, track.velocity)) < 0:
+        return -track.velocity, ((tick, position),)
+    seen = (track.seen + ((tick, position),))[-HISTORY:]
     return (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), seen
+
+
+def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
+    """The least row and col of ``edge``'s cells, then the greatest."""
+    low, high = edge.min(axis=0), edge.max(axis=0)
+    return int(low[0]), int(low[1]), int(high[0]), int(high[1])
+
+
+def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int]) -> np.ndarray:
+    """How far a box moved (rows, cols) from one leading edge to the next, given by their bounds (least row and
+    col, then greatest): the shift of whichever of the four corners moved least. A box moving across rows and cols
+    at once shows a row of cells on one tick and a column on another (its top edge as it rises, its right edge as
+    it goes right), whose centres lie half the box apart: read from the centres, a box going up and to the right
+    turned back every tick. The corner towards which it moves is the same cell of the box on both."""
+    (r0, c0, r1, c1), (s0, d0, s1, d1) = before, after
+    shifts = ((s0 - r0, d0 - c0), (s0 - r0, d1 - c1), (s1 - r1, d0 - c0), (s1 - r1, d1 - c1))
+    return np.array(min(shifts, key=lambda shift: max(abs(shift[0]), abs(shift[1]))), np.float64)
 
 
 def _crosses(velocity: np.ndarray, direction: np.ndarray) -> bool:

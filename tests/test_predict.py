@@ -97,6 +97,23 @@ def test_the_velocity_is_the_mean_over_the_last_edges():
     np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.3])
 
 
+def test_a_box_moving_up_and_right_shows_rows_and_columns_and_keeps_its_direction():
+    """A 3 x 3 box going up and to the right a cell at a time, rows and cols in turn: its leading edge is its right
+    column (rows 9-11, col 13) after a move right, its top row (row 8, cols 11-13) after a move up. The edges' centres
+    lie half the box apart - (10, 13), then (8, 12): read from them, it went back up-left and turned back every tick.
+    The corners that move least say (0, 1), (-1, 0), (0, 1): 1 row up and 2 cols right over the 3 ticks after its
+    first edge (hand-computed), and the next cells ahead of it, row 7 and col 15, are expected."""
+    predictor = MotionPredictor((20, 30))
+    edges = [[(9, c) for c in range(10, 13)], [(r, 13) for r in range(9, 12)], [(8, c) for c in range(11, 14)],
+             [(r, 14) for r in range(8, 11)]]
+    for tick, edge in enumerate(edges, start=1):
+        predictor.observe(tick, np.array(edge))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [-1 / 3, 2 / 3])
+    arrivals = predictor.arrivals(4, 3)
+    assert {(8, 15), (9, 15), (10, 15)} <= set(arrivals) and {(7, 14), (7, 15)} & set(arrivals)
+    assert not set(arrivals) & {(r, c) for r in range(11, 20) for c in range(30)}  # nothing below it
+
+
 def test_a_door_that_closes_once_is_never_predicted():
     predictor = MotionPredictor((20, 30))
     predictor.observe(1, np.array([(r, c) for r in range(5, 7) for c in range(3, 9)]))
