@@ -79,7 +79,9 @@ class MotionPredictor:
             velocity, seen = None, ((tick, edge.sum(axis=0) / len(edge)),)  # the centre, without np.mean's dispatch
             if index is not None:
                 matched.add(index)
-                velocity, seen = _continued(previous[index], tick, edge_shift(previous[index].bounds, bounds))
+                track = previous[index]
+                expected = None if track.velocity is None else track.velocity * (tick - track.tick)
+                velocity, seen = _continued(track, tick, edge_shift(track.bounds, bounds, expected))
             tracks.append(Track(edge, tick, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
@@ -239,15 +241,21 @@ def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
     return int(low[0]), int(low[1]), int(high[0]), int(high[1])
 
 
-def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int]) -> np.ndarray:
+def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int],
+               expected: np.ndarray | None = None) -> np.ndarray:
     """How far a box moved (rows, cols) from one leading edge to the next, given by their bounds (least row and
-    col, then greatest): the shift of whichever of the four corners moved least. A box moving across rows and cols
-    at once shows a row of cells on one tick and a column on another (its top edge as it rises, its right edge as
-    it goes right), whose centres lie half the box apart: read from the centres, a box going up and to the right
-    turned back every tick. The corner towards which it moves is the same cell of the box on both."""
+    col, then greatest): the shift of one of the four corners or of the middle - the one nearest ``expected`` (the
+    track's velocity times the ticks between), or with none expected the corner that moved least. A box moving
+    across rows and cols at once shows a row of cells on one tick and a column on another (its top edge as it rises,
+    its right edge as it goes right), whose middles lie half the box apart: read from the middles, a box going up
+    and to the right turned back every tick. The corner towards which it moves is the same cell of the box on both."""
     (r0, c0, r1, c1), (s0, d0, s1, d1) = before, after
-    shifts = ((s0 - r0, d0 - c0), (s0 - r0, d1 - c1), (s1 - r1, d0 - c0), (s1 - r1, d1 - c1))
-    return np.array(min(shifts, key=lambda shift: max(abs(shift[0]), abs(shift[1]))), np.float64)
+    corners = [(s0 - r0, d0 - c0), (s0 - r0, d1 - c1), (s1 - r1, d0 - c0), (s1 - r1, d1 - c1)]
+    if expected is None:
+        return np.array(min(corners, key=lambda shift: max(abs(shift[0]), abs(shift[1]))), np.float64)
+    middle = ((s0 + s1 - r0 - r1) / 2, (d0 + d1 - c0 - c1) / 2)
+    return np.array(min(corners + [middle], key=lambda shift: max(abs(shift[0] - expected[0]),
+                                                                   abs(shift[1] - expected[1]))), np.float64)
 
 
 def _crosses(velocity: np.ndarray, direction: np.ndarray) -> bool:
