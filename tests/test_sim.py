@@ -357,7 +357,8 @@ def test_the_robot_steers_through_the_ticks_move_or_stops(robot, move, route, ce
 
 def test_a_robot_yielding_to_a_box_in_pybullet_stays_put():
     """A crossing world where obstacle prediction yields (avoid_boxes): on the ticks the planner yields, the robot
-    moved 0.101 m a tick against 0.097 on the others (it followed the route regardless); it now stops."""
+    moved 0.101 m a tick against 0.097 on the others (it followed the route regardless); it now stops. Medians: a
+    yield's first tick is spent braking (0.04-0.07 m), and the ticks after a stop accelerating."""
     world = tdp.random_worlds.make_world("crossing", 80, 7300)
     config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1, predict_ticks=8, avoid_boxes=True)
     episode = run_episode(world, config)
@@ -366,7 +367,7 @@ def test_a_robot_yielding_to_a_box_in_pybullet_stays_put():
     for before, after in zip(trace, trace[1:]):
         moved.get(after[2], []).append(math.hypot(after[0] - before[0], after[1] - before[1]))
     assert episode["reached"] and len(moved[Mode.YIELD]) >= 5
-    assert np.mean(moved[Mode.YIELD]) < 0.3 * np.mean(moved[Mode.DP])
+    assert np.median(moved[Mode.YIELD]) < 0.3 * np.median(moved[Mode.DP])
 
 
 @pytest.mark.parametrize("name", ["max_speed", "goal_tolerance_m"])
