@@ -150,9 +150,8 @@ class MotionPredictor:
             return offsets, segment + 1
         period = 1.0 / track.speed
         direction = track.velocity / track.speed
-        units = np.array([unit for unit in {tuple(unit) for unit in np.stack([np.floor(direction),
-                                                                              np.ceil(direction)]).astype(np.int64)}
-                          if any(unit)])
+        units = np.unique(np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64), axis=0)
+        units = units[units.any(axis=1)]  # the whole-cell steps along the direction, (0, 0) left out
         moves = [(count, step) for step in range(1, ahead + 1)
                  for count in range((step - 1) // math.ceil(period) + 1,  # by the tick before at the least,
                                     min((waited + step) // math.floor(period),  # by then at most

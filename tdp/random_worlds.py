@@ -414,10 +414,11 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     if blockage:
         plug, change = _plug_on_route(grid, route)
         obstacles.append(plug)
-    return Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
-                    blocking=len(obstacles) - 1 if blockage else None, tick_s=TICK_S_PER_M * grid.resolution,
-                    max_ticks=max(4 * sum(grid.shape), ROUTE_TICKS * (len(route) - 1)),
-                    description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
+    scenario = Scenario(grid, start, goal, obstacles=obstacles, name=f"boxes-{boxes}-{seed}", change_tick=change,
+                        blocking=len(obstacles) - 1 if blockage else None, tick_s=TICK_S_PER_M * grid.resolution,
+                        description=f"{boxes} shuttling boxes{' and a blockage on the route' if blockage else ''}")
+    scenario.max_ticks = max(scenario.tick_limit, ROUTE_TICKS * (len(route) - 1))
+    return scenario
 
 
 def _plug_on_route(grid: GridMap, route: list[tuple[int, int]]) -> tuple[Obstacle, int]:
