@@ -162,6 +162,26 @@ def test_journal_skips_a_torn_line_and_a_result_replaces_an_error(tmp_path):
     assert again.rows == {"b": {"x": 1}, "a": {"x": 2}} and not again.errors
 
 
+def test_journal_is_strict_json_and_a_row_it_cannot_hold_is_that_episodes_error(tmp_path):
+    """An extra metric's nan was written as NaN, which Python reads and strict JSON readers refuse; a value JSON
+    cannot hold stopped the sweep with a TypeError from deep inside json."""
+    import numpy as np
+
+    def strict(text):
+        return json.loads(text, parse_constant=lambda name: pytest.fail(f"{name} in the journal"))
+
+    path = tmp_path / JOURNAL
+    journal = Journal(path)
+    assert journal.add("a", {"closest": math.nan, "far": -math.inf, "mean": np.float32(1.5),
+                             "cells": np.arange(2), "reached": np.bool_(True), "pair": (1, 2)}) is None
+    expected = {"closest": None, "far": None, "mean": 1.5, "cells": [0, 1], "reached": True, "pair": [1, 2]}
+    assert [strict(line) for line in path.read_text().splitlines()] == [{"key": "a", "row": expected}]
+    assert journal.rows == Journal(path).rows == {"a": expected}  # resumed or not, the same rows
+    for bad, words in (({"cells": {1, 2}}, "cannot write set"), ({"by": {(0, 1): 2}}, "names must be text")):
+        assert words in journal.add("b", bad)
+        assert "b" not in journal.rows and words in Journal(path).errors["b"]
+
+
 def test_ratios_are_lengths_over_the_oracle_of_the_same_world(tmp_path):
     spec = load_spec(spec_file(tmp_path, SMALL))
     rows = run_sweep(spec, tmp_path, serial=True, log=io.StringIO())

@@ -25,6 +25,8 @@ MAX_WORKERS_PER_CORE = 4
 class Journal:
     """The sweep's record on disk: one JSON line per finished episode, ``{"key", "row"}`` or ``{"key", "error"}``,
     flushed and synced as it is written, so a crash, a kill or Ctrl-C loses at most the episodes still running.
+    Strict JSON, which any reader takes: a value that is not a finite number (an extra metric's nan) is null, in the
+    row kept in memory as in the line written, so a sweep resumed from the journal has the rows an unbroken one has.
     Reading it back skips a line torn by a kill; a later line for a key replaces an earlier one (a rerun's result
     replaces a recorded error)."""
 
@@ -59,19 +61,22 @@ class Journal:
         """The rows of those of ``episodes`` that are done, in their order."""
         return [self.rows[e.key] for e in episodes if e.key in self.rows]
 
-    def add(self, key: str, row: dict | None = None, error: str | None = None) -> None:
-        """Record an episode's row, or the error that ended it."""
-        entry = {"key": key, "row": row} if error is None else {"key": key, "error": error}
-        self._take(entry)
-        line = json.dumps(entry, default=_plain) + "\n"
+    def add(self, key: str, row: dict | None = None, error: str | None = None) -> str | None:
+        """Record an episode's row, or the error that ended it; return the error recorded (a row with a value JSON
+        cannot hold, which an extra metric may return, is recorded as that episode's error: the sweep goes on)."""
         try:
-            self._append(line)
+            entry = {"key": key, "row": _plain(row)} if error is None else {"key": key, "error": error}
+        except TypeError as problem:
+            entry = {"key": key, "error": f"TypeError: {problem}"}
+        self._take(entry)
+        try:
+            self._append(_line(entry))
         except OSError as problem:  # keep going: the results must outlive an output problem
             self.path = Path(tempfile.mkdtemp(prefix="tdp-sweep-")) / JOURNAL
             print(f"warning: cannot write the journal ({problem}); writing it to {self.path} instead",
                   file=self.log, flush=True)
-            self._append("".join(json.dumps({"key": k, "row": r}, default=_plain) + "\n"
-                                 for k, r in self.rows.items()))
+            self._append("".join(_line({"key": k, "row": r}) for k, r in self.rows.items()))
+        return entry.get("error")
 
     def _append(self, text: str) -> None:
         with open(self.path, "a") as file:
@@ -80,11 +85,30 @@ class Journal:
             os.fsync(file.fileno())
 
 
+def _line(entry: dict) -> str:
+    return json.dumps(entry, allow_nan=False) + "\n"
+
+
 def _plain(value):
-    """JSON for numpy scalars and arrays that extra metrics may return."""
+    """``value`` as JSON's types: numpy scalars and arrays (which extra metrics may return) as Python's, a float
+    that is not finite as None. A TypeError for anything else JSON cannot hold."""
     if hasattr(value, "tolist"):
-        return value.tolist()
+        value = value.tolist()
+    if isinstance(value, dict):
+        return {_key(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
     raise TypeError(f"cannot write {type(value).__name__} in a sweep row")
+
+
+def _key(name) -> str:
+    if not isinstance(name, str):
+        raise TypeError(f"a sweep row's names must be text, got {name!r}")
+    return name
 
 
 class Progress:
@@ -142,8 +166,7 @@ def run_sweep(spec: Spec, out: Path, scheduler: str | None = None, workers: int 
     if todo:
         local = min(count, len(todo))
         for episode, row, error in _serially(todo) if serial else _on_dask(todo, scheduler, local):
-            journal.add(episode.key, row, error)
-            progress(episode, error)
+            progress(episode, journal.add(episode.key, row, error))
     return journal.rows_of(episodes)
 
 
