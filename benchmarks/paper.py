@@ -95,7 +95,8 @@ def main() -> None:
     print_table(["sweep", "value", "nodes", "relevant detections", "ratio", "turn after", "closest",
                  "ms/tick median", "mean", "p95", "max"],
                 [[r["sweep"], str(r["value"]), str(r["nodes_placed"]), str(r["relevant_detections"]),
-                  f"{r['ratio']:.3f}", str(r["turn_after"]), f"{r['closest']:.1f}", f"{r['ms_median']:.2f}",
+                  f"{r['ratio']:.3f}", str(r["turn_after"]),
+                  "-" if r["closest"] is None else f"{r['closest']:.1f}", f"{r['ms_median']:.2f}",
                   f"{r['ms_mean']:.2f}", f"{r['ms_p95']:.2f}", f"{r['ms_max']:.2f}"] for r in swept])
     curves_figure(swept, RESULTS / f"paper-curves{suffix}.png")
     summary = [{k: v for k, v in r.items() if k != "trajectory"} for r in swept]
