@@ -46,6 +46,20 @@ class Track:
         self.bounds = _bounds(self.edge)
 
     @property
+    def periods(self) -> tuple[float, float]:
+        """The least and the most ticks a one-cell move may take, as the edges seen allow (a box slower than a cell
+        per tick): n cells moved between edges S ticks apart, each seen at the first tick after the move, say the
+        period P lies between (S - 1) / n and (S + 1) / n - 1 / speed give or take 1 / n. A box at 0.375 cells per
+        tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33, and a window of whole periods of 3
+        ticks missed the move that came after 2. With one edge since a turn, the period as it went."""
+        period = 1.0 / self.speed
+        (first, start), (last, end) = self.seen[0], self.seen[-1]
+        cells = float(np.abs(end - start).max())
+        if last == first or cells < 1.0:
+            return period, period
+        return round(max(1.0, period - 1.0 / cells), 9), round(period + 1.0 / cells, 9)  # whole periods stay whole
+
+    @property
     def position(self) -> np.ndarray:
         """Where the track is (rows, cols): its first edge's centre moved on by each shift seen since."""
         return self.seen[-1][1]
@@ -103,9 +117,10 @@ class MotionPredictor:
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
         first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time,
-        every 1 / speed ticks: the k-th move after its last edge comes between k floor(1 / speed) and k ceil(1 /
-        speed) ticks after it, and only those ticks are flagged (a box seen every other tick is not expected every
-        tick), a move overdue (no edge seen since its window began) from the next tick on; a faster one sweeps as in
+        every P ticks, P between the least and the most its edges allow (:attr:`Track.periods`): the k-th move
+        after its last edge comes between floor(k least) and ceil(k most) ticks after it, and only those ticks are
+        flagged (a box seen every other tick is not expected every tick), a move overdue (no edge seen since its
+        window began) from the next tick on; a faster one sweeps as in
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
         than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
         within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
@@ -148,14 +163,14 @@ class MotionPredictor:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
             return offsets, segment + 1
-        period = 1.0 / track.speed
+        least, most = track.periods
         direction = track.velocity / track.speed
         units = np.unique(np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64), axis=0)
         units = units[units.any(axis=1)]  # the whole-cell steps along the direction, (0, 0) left out
         moves = [(count, step) for step in range(1, ahead + 1)
-                 for count in range((step - 1) // math.ceil(period) + 1,  # by the tick before at the least,
-                                    min((waited + step) // math.floor(period),  # by then at most
-                                        1 + (step - 1) // math.floor(period)) + 1)]
+                 for count in range(_least_moves(step - 1, most) + 1,  # made by the tick before at the least,
+                                    min(_most_moves(waited + step, least),  # by then at most
+                                        1 + _most_moves(step - 1, least)) + 1)]
         counts, steps = np.array(moves, np.int64).reshape(-1, 2).T
         return (counts[:, None, None] * units[None]).reshape(-1, 2), np.repeat(steps, len(units))
 
@@ -171,6 +186,18 @@ class MotionPredictor:
             return np.zeros((0, 2), np.int64)
         cells = np.unique(np.vstack(found), axis=0)
         return cells[self._inside(cells)]
+
+
+def _most_moves(ticks: int, period: float) -> int:
+    """The most one-cell moves a box that takes at least ``period`` ticks a move makes in the ``ticks`` ticks after
+    one: its c-th move is seen floor(c period) ticks after it at the earliest."""
+    return math.ceil((ticks + 1) / period) - 1
+
+
+def _least_moves(ticks: int, period: float) -> int:
+    """The fewest one-cell moves a box that takes at most ``period`` ticks a move has made ``ticks`` ticks after
+    one: its c-th move is seen ceil(c period) ticks after it at the latest."""
+    return math.floor(ticks / period)
 
 
 def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -> bool:

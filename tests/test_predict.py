@@ -50,21 +50,41 @@ def test_a_slow_box_is_tracked_across_the_ticks_it_does_not_move_and_dropped_onc
     assert predictor.tracks == [] and len(predictor.entering(8, 4)) == 0  # no edge for 4 ticks: it stopped
 
 
-def test_a_box_seen_every_other_tick_is_expected_every_other_tick():
-    """Edges at columns 10, 11, 12 at ticks 2, 4, 6 (half a cell per tick): the next move is due at tick 8, so
-    right after tick 6 nothing is entered at tick 7, column 13 at tick 8 (hand-computed)."""
+def test_a_box_seen_every_other_tick_is_expected_within_the_periods_its_edges_allow():
+    """Edges at columns 10, 11, 12 at ticks 2, 4, 6: two moves in four ticks, each seen at the first tick after it,
+    say a period between 1.5 and 2.5 ticks (a box at 0.4-0.67 cells per tick shows those edges). Right after tick
+    6 its next move may come at tick 7 (floor 1.5 ticks after the last), its second not before tick 9 (floor 3):
+    column 13 from tick 7, column 14 from tick 9 - not a cell a tick (hand-computed)."""
     predictor = MotionPredictor((20, 30))
     for tick, col in ((2, 10), (4, 11), (6, 12)):
         predictor.observe(tick, column(col))
         predictor.observe(tick + 1, np.zeros((0, 2)))
     np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.5])
-    assert predictor.arrivals(6, 2) == {cell: 2 for cell in cells_of(column(13))}
+    assert predictor.tracks[0].periods == (1.5, 2.5)
+    assert predictor.arrivals(6, 2) == {cell: 1 for cell in cells_of(column(13))}
+    assert predictor.arrivals(6, 3) == {**{cell: 1 for cell in cells_of(column(13))},
+                                        **{cell: 3 for cell in cells_of(column(14))}}
     assert predictor.arrivals(7, 1) == {cell: 1 for cell in cells_of(column(13))}
 
 
+def test_a_box_whose_speed_its_edges_read_low_is_expected_as_early_as_they_allow():
+    """A box at 0.37 cells per tick (a move every 2.7 ticks) shows edges at ticks 1, 4, 7 and 10 and its next at
+    tick 12. Three moves in nine ticks read 1/3 cell per tick; a window of whole periods of 3 ticks expected the
+    next only at tick 13, and a robot stepped in front of it at tick 11 (crossing worlds with avoid_boxes). The
+    edges allow a period between 8/3 and 10/3 ticks: column 14 from tick 12 (floor 8/3 ticks after the last),
+    column 15 from tick 15 (floor 16/3) (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((1, 10), (4, 11), (7, 12), (10, 13)):
+        predictor.observe(tick, column(col))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 1 / 3])
+    assert predictor.arrivals(10, 5) == {**{cell: 2 for cell in cells_of(column(14))},
+                                         **{cell: 5 for cell in cells_of(column(15))}}
+
+
 def test_a_move_overdue_is_expected_from_the_next_tick():
-    """Edges at columns 10, 11 at ticks 2, 4 (half a cell per tick): the next move is due at tick 6. At tick 6 no
-    edge came (the box slowed): column 12 is expected at tick 7, not skipped for column 13 (hand-computed)."""
+    """Edges at columns 10, 11 at ticks 2, 4: one move in two ticks says a period between 1 and 3 ticks, so the
+    next move is due at tick 5 at the earliest and 7 at the latest. At tick 6 no edge came: column 12 is expected
+    at tick 7, not skipped for column 13, which may follow a tick later (hand-computed)."""
     predictor = MotionPredictor((20, 30))
     for tick, col in ((2, 10), (4, 11)):
         predictor.observe(tick, column(col))
@@ -72,7 +92,8 @@ def test_a_move_overdue_is_expected_from_the_next_tick():
     predictor.observe(6, np.zeros((0, 2)))
     assert predictor.arrivals(6, 1) == {cell: 1 for cell in cells_of(column(12))}
     assert predictor.arrivals(6, 3) == {**{cell: 1 for cell in cells_of(column(12))},
-                                        **{cell: 3 for cell in cells_of(column(13))}}
+                                        **{cell: 2 for cell in cells_of(column(13))},
+                                        **{cell: 3 for cell in cells_of(column(14))}}
 
 
 def test_a_box_that_turns_back_is_expected_back_at_its_speed():
