@@ -46,18 +46,24 @@ class Track:
         self.bounds = _bounds(self.edge)
 
     @property
-    def periods(self) -> tuple[float, float]:
-        """The least and the most ticks a one-cell move may take, as the edges seen allow (a box slower than a cell
-        per tick): n cells moved between edges S ticks apart, each seen at the first tick after the move, say the
-        period P lies between (S - 1) / n and (S + 1) / n - 1 / speed give or take 1 / n. A box at 0.375 cells per
-        tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33, and a window of whole periods of 3
-        ticks missed the move that came after 2. With one edge since a turn, the period as it went."""
-        period = 1.0 / self.speed
+    def quickest(self) -> tuple[float | None, float | None]:
+        """Per axis (rows, cols) of a box slower than a cell per tick, the fewest ticks a one-cell move along it may
+        take as the edges seen allow (None along an axis it does not move on): n cells moved between edges S ticks
+        apart, each seen at the first tick after the move, say the period P is more than (S - 1) / n - 1 / speed
+        less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
+        and a window of whole periods of 3 ticks missed the move that came after 2. With one edge since a turn, the
+        period as it went."""
         (first, start), (last, end) = self.seen[0], self.seen[-1]
-        cells = float(np.abs(end - start).max())
-        if last == first or cells < 1.0:
-            return period, period
-        return round(max(1.0, period - 1.0 / cells), 9), round(period + 1.0 / cells, 9)  # whole periods stay whole
+        return tuple(_quickest_period(float(speed), float(cells), last - first)
+                     for speed, cells in zip(np.abs(self.velocity), np.abs(end - start)))
+
+    @property
+    def moved_at(self) -> tuple[int, int]:
+        """Per axis (rows, cols), the tick of the last edge that moved the box along it (the first edge held, where
+        none did): a box going up and to the right at unequal speeds shows its rows' moves and its cols' apart, and
+        its next move up is due counting from its last move up, not from its last edge."""
+        return tuple(next((tick for (tick, now), (_, then) in zip(self.seen[::-1], self.seen[-2::-1])
+                           if abs(now[axis] - then[axis]) >= 0.5), self.seen[0][0]) for axis in (0, 1))
 
     @property
     def position(self) -> np.ndarray:
@@ -116,11 +122,11 @@ class MotionPredictor:
     def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
-        first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time,
-        every P ticks, P between the least and the most its edges allow (:attr:`Track.periods`): the k-th move
-        after its last edge comes between floor(k least) and ceil(k most) ticks after it, and only those ticks are
-        flagged (a box seen every other tick is not expected every tick), a move overdue (no edge seen since its
-        window began) from the next tick on; a faster one sweeps as in
+        first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time
+        along each axis, rows and cols apart, every P ticks, P no less than its edges allow (:attr:`Track.quickest`):
+        its k-th move along an axis after its last edge comes floor(k P) ticks after it at the earliest (a box seen
+        every other tick is not expected every tick), a move overdue (no edge seen since it was due) from the next
+        tick on; a faster one sweeps as in
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
         than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
         within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
@@ -163,16 +169,13 @@ class MotionPredictor:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
             return offsets, segment + 1
-        least, most = track.periods
-        direction = track.velocity / track.speed
-        units = np.unique(np.stack([np.floor(direction), np.ceil(direction)]).astype(np.int64), axis=0)
-        units = units[units.any(axis=1)]  # the whole-cell steps along the direction, (0, 0) left out
-        moves = [(count, step) for step in range(1, ahead + 1)
-                 for count in range(_least_moves(step - 1, most) + 1,  # made by the tick before at the least,
-                                    min(_most_moves(waited + step, least),  # by then at most
-                                        1 + _most_moves(step - 1, least)) + 1)]
-        counts, steps = np.array(moves, np.int64).reshape(-1, 2).T
-        return (counts[:, None, None] * units[None]).reshape(-1, 2), np.repeat(steps, len(units))
+        counts = [_counts_by_step(quickest, waited + track.tick - moved, ahead)
+                  for quickest, moved in zip(track.quickest, track.moved_at)]
+        earliest = np.maximum.outer(*counts)  # a box's rows and cols move apart (a diagonal box rounds each its way)
+        signs = np.sign(track.velocity).astype(np.int64)
+        rows, cols = np.indices(earliest.shape)
+        offsets = np.column_stack([rows.ravel() * signs[0], cols.ravel() * signs[1]])
+        return offsets[1:], earliest.ravel()[1:]  # (0, 0), where the edge is, left out
 
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
@@ -188,16 +191,34 @@ class MotionPredictor:
         return cells[self._inside(cells)]
 
 
+def _quickest_period(speed: float, cells: float, ticks: int) -> float | None:
+    """The fewest ticks a move along an axis may take (:attr:`Track.quickest`) for a box seen to move ``cells``
+    along it in ``ticks`` at ``speed`` cells per tick; None where it does not move along it."""
+    if speed <= 0.0:
+        return None
+    period = 1.0 / speed
+    if ticks == 0 or cells < 1.0:
+        return period
+    return round(max(1.0, period - 1.0 / cells), 9)  # a whole period stays whole
+
+
+def _counts_by_step(quickest: float | None, waited: int, ahead: int) -> np.ndarray:
+    """For 0, 1, 2 ... one-cell moves along an axis, the first of the next ``ahead`` ticks (1 = the next; 0 for
+    none) by which a box whose moves take at least ``quickest`` ticks may have made them, ``waited`` ticks after
+    its last edge: the c-th comes floor(c quickest) ticks after the last edge at the earliest, and one overdue (no
+    edge since it was due: the period is not a whole number of ticks, or the box slowed) is made from the next tick
+    on at the earliest, the next ones floor(quickest) apart."""
+    if quickest is None:
+        return np.zeros(1, np.int64)
+    made_by = [min(_most_moves(waited + step, quickest), 1 + _most_moves(step - 1, quickest))
+               for step in range(1, ahead + 1)]
+    return np.concatenate([[0], np.searchsorted(made_by, np.arange(1, made_by[-1] + 1)) + 1]).astype(np.int64)
+
+
 def _most_moves(ticks: int, period: float) -> int:
     """The most one-cell moves a box that takes at least ``period`` ticks a move makes in the ``ticks`` ticks after
     one: its c-th move is seen floor(c period) ticks after it at the earliest."""
     return math.ceil((ticks + 1) / period) - 1
-
-
-def _least_moves(ticks: int, period: float) -> int:
-    """The fewest one-cell moves a box that takes at most ``period`` ticks a move has made ``ticks`` ticks after
-    one: its c-th move is seen ceil(c period) ticks after it at the latest."""
-    return math.floor(ticks / period)
 
 
 def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -> bool:

@@ -60,7 +60,7 @@ def test_a_box_seen_every_other_tick_is_expected_within_the_periods_its_edges_al
         predictor.observe(tick, column(col))
         predictor.observe(tick + 1, np.zeros((0, 2)))
     np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.5])
-    assert predictor.tracks[0].periods == (1.5, 2.5)
+    assert predictor.tracks[0].quickest == (None, 1.5)
     assert predictor.arrivals(6, 2) == {cell: 1 for cell in cells_of(column(13))}
     assert predictor.arrivals(6, 3) == {**{cell: 1 for cell in cells_of(column(13))},
                                         **{cell: 3 for cell in cells_of(column(14))}}
@@ -133,6 +133,27 @@ def test_a_box_moving_up_and_right_shows_rows_and_columns_and_keeps_its_directio
     arrivals = predictor.arrivals(4, 3)
     assert {(8, 15), (9, 15), (10, 15)} <= set(arrivals) and {(7, 14), (7, 15)} & set(arrivals)
     assert not set(arrivals) & {(r, c) for r in range(11, 20) for c in range(30)}  # nothing below it
+
+
+def test_a_box_moving_up_slower_than_right_is_expected_up_counting_from_its_last_move_up():
+    """A 2 x 2 box (corner at row 10, col 10 at tick 0) moves right at ticks 2, 4, 6, 8, 10 and up at 3 and 7 (half a
+    cell per tick right, a quarter up); its next move is up, at tick 11. At tick 10 its edge is its right column
+    (rows 8-9, col 16) and its velocity (-0.25, 0.5). Moved by the direction's whole-cell steps, (-1, 1) or (0, 1),
+    counted from that edge, the edge never went straight up: a robot beside the box's top corner was driven over
+    (crossing worlds with avoid_boxes). Rows and cols move apart: one row in the last four edges (4 ticks) says a period of more than 3
+    ticks, the last move up was at tick 7, so the next may come at tick 11; a col every 1.5 ticks or more, the last
+    at tick 10, so at tick 11 too: the edge is expected shifted (-1, 0), (0, 1) and (-1, 1) at tick 11
+    (hand-computed). Cell (7, 15), which the box also enters then, is not: the tracker knows it by its edge."""
+    predictor = MotionPredictor((30, 40))
+    row, col, before = 10, 10, set()
+    for tick in range(11):
+        col, row = col + (tick % 2 == 0 and tick > 0), row - (tick % 4 == 3)
+        box = {(r, c) for r in (row, row + 1) for c in (col, col + 1)}
+        predictor.observe(tick, np.array(sorted(box - before)))
+        before = box
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [-0.25, 0.5])
+    assert predictor.tracks[0].moved_at == (7, 10)
+    assert predictor.arrivals(10, 1) == {cell: 1 for cell in [(7, 16), (8, 16), (8, 17), (9, 17), (7, 17)]}
 
 
 def test_a_door_that_closes_once_is_never_predicted():
