@@ -73,6 +73,22 @@ def test_a_world_named_twice_is_one_world(tmp_path):
     assert [w.coords["seed"] for w in spec.worlds] == [3, 4] and len(spec.episodes()) == 4
 
 
+def test_an_entry_names_its_worlds_group_and_a_world_in_two_groups_stays_in_the_first(tmp_path):
+    text = ("worlds:\n  - {family: rooms, size: 60, seeds: [3, 4]}\n"
+            "  - {family: rooms, size: 60, seeds: [4, 5], group: rooms-held-out}\n"
+            "  - {scenario: static, group: 7}\nplanners: [{planner: plain-dp}]\n")
+    spec = load_spec(spec_file(tmp_path, text))
+    assert [(w.coords["world"], w.coords["group"]) for w in spec.worlds] == [
+        ("rooms-60-3", "rooms"), ("rooms-60-4", "rooms"), ("rooms-60-5", "rooms-held-out"), ("static", "7")]
+    assert len(spec.episodes()) == 8
+    for group, words in ((None, "worlds[0].group is empty"), ("", "worlds[0].group is empty"),
+                         ([1], "worlds[0].group must be text")):
+        bad = spec_file(tmp_path, f"worlds: [{{scenario: static, group: {json.dumps(group)}}}]\n"
+                                  "planners: [{planner: plain-dp}]\n")
+        with pytest.raises(ValueError, match=re.escape(words)):
+            load_spec(bad)
+
+
 def test_a_world_file_edit_changes_the_keys_of_its_episodes(tmp_path):
     import tdp
 

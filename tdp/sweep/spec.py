@@ -217,7 +217,20 @@ def _file(value, where: str, folder: Path) -> tuple[Path, str]:
 
 
 def _worlds(entry, where: str, folder: Path) -> list[World]:
-    """The worlds of one entry of ``worlds``, checked (families and sizes by name, files by loading them)."""
+    """The worlds of one entry of ``worlds``, checked, in the entry's ``group`` where it names one (held-out seeds
+    of a family apart from the seeds a study tuned on, say; by default the family, scenario or file)."""
+    if not isinstance(entry, dict) or "group" not in entry:
+        return _kind_worlds(entry, where, folder)
+    group = checks.text(entry["group"], f"{where}.group", "")
+    if not group:
+        raise ValueError(f"{where}.group is empty: name the group or leave the key out")
+    return [World(world.recipe, {**world.coords, "group": group})
+            for world in _kind_worlds({k: v for k, v in entry.items() if k != "group"}, where, folder)]
+
+
+def _kind_worlds(entry, where: str, folder: Path) -> list[World]:
+    """The worlds of one entry of ``worlds`` but its group, checked (families and sizes by name, files by loading
+    them)."""
     import tdp
     from ..random_worlds import FAMILIES, GENERATION
 
@@ -275,9 +288,9 @@ def _map_options(entry: dict, where: str) -> dict:
 
 
 def _named_apart(worlds) -> tuple[World, ...]:
-    """The worlds, each once (a seed listed twice, or in two entries, is one world), those that share a name with a
-    different world renamed ``name#k`` (k: 1, 2, ... in order of first appearance): results are keyed by name, and
-    the oracle's length of one must not be read for the other."""
+    """The worlds, each once (a seed listed twice, or in two entries, is one world, in the first entry's group),
+    those that share a name with a different world renamed ``name#k`` (k: 1, 2, ... in order of first appearance):
+    results are keyed by name, and the oracle's length of one must not be read for the other."""
     worlds = list(worlds)
     recipes: dict[str, list[dict]] = {}
     for world in worlds:
@@ -289,7 +302,7 @@ def _named_apart(worlds) -> tuple[World, ...]:
         name, same = world.coords["world"], recipes[world.coords["world"]]
         if len(same) > 1:
             world = World(world.recipe, {**world.coords, "world": f"{name}#{same.index(world.recipe) + 1}"})
-        out.setdefault(json.dumps([world.recipe, world.coords], sort_keys=True), world)
+        out.setdefault(json.dumps([world.recipe, world.coords["world"]], sort_keys=True), world)  # the first group
     return tuple(out.values())
 
 
