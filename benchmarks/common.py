@@ -133,14 +133,20 @@ DETECTION_COLUMNS = [("detections", lambda s: str(s.get("detections", "-"))),
 
 
 def sweep_benchmark(doc: str, name: str, summarise: Callable[[list[dict]], list[dict]],
-                    columns: list[tuple[str, Callable[[dict], str]]], figure: Callable, extra: dict | None = None):
+                    columns: list[tuple[str, Callable[[dict], str]]], figure: Callable, extra: dict | None = None,
+                    held_out: str | None = None):
     """The main of a benchmark that is a sweep spec: run ``specs/<name>.yaml`` (on a local cluster unless
     --workers says otherwise), print ``summarise(table)`` as a table of ``columns`` (header, cell of a summary row),
     and save the spec's name, ``extra``, the summary and the tidy table as JSON with ``figure(summary, png)``.
     --quick runs serially in this process unless --workers is given (a smoke run: a cluster's workers would each
-    compile the kernels for a few episodes)."""
-    args = sweep_parser(doc, "one per core; serially with --quick").parse_args()
-    spec, _, table = run_spec(name, args, serial=args.quick)
+    compile the kernels for a few episodes). With ``held_out`` (what it holds, for --help), --held-out runs
+    ``specs/<name>-held-out.yaml`` instead: worlds of seeds the benchmark's rules were not tuned on."""
+    parser = sweep_parser(doc, "one per core; serially with --quick")
+    if held_out:
+        parser.add_argument("--held-out", action="store_true", help=f"run {name}-held-out.yaml: {held_out}")
+    args = parser.parse_args()
+    spec, _, table = run_spec(f"{name}-held-out" if getattr(args, "held_out", False) else name, args,
+                              serial=args.quick)
     summary = summarise(table)
     print_table([header for header, _ in columns], [[cell(s) for _, cell in columns] for s in summary])
     save_results(spec.name, {"spec": f"benchmarks/specs/{spec.name}.yaml", **(extra or {}), "summary": summary,

@@ -49,8 +49,8 @@ class Track:
     def quickest(self) -> tuple[float | None, float | None]:
         """Per axis (rows, cols) of a box slower than a cell per tick, the fewest ticks a one-cell move along it may
         take as the edges seen allow (None along an axis it does not move on): n cells moved between edges S ticks
-        apart, each seen at the first tick after the move, say the period P is more than (S - 1) / n - 1 / speed
-        less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
+        apart, each seen at the first tick after the move, say the period P is more than (S - 1) / n, that is 1 /
+        speed less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
         and a window of whole periods of 3 ticks missed the move that came after 2. With one edge since a turn, the
         period as it went."""
         (first, start), (last, end) = self.seen[0], self.seen[-1]
@@ -205,9 +205,9 @@ def _quickest_period(speed: float, cells: float, ticks: int) -> float | None:
 def _counts_by_step(quickest: float | None, waited: int, ahead: int) -> np.ndarray:
     """For 0, 1, 2 ... one-cell moves along an axis, the first of the next ``ahead`` ticks (1 = the next; 0 for
     none) by which a box whose moves take at least ``quickest`` ticks may have made them, ``waited`` ticks after
-    its last edge: the c-th comes floor(c quickest) ticks after the last edge at the earliest, and one overdue (no
-    edge since it was due: the period is not a whole number of ticks, or the box slowed) is made from the next tick
-    on at the earliest, the next ones floor(quickest) apart."""
+    its last edge that moved it along the axis: the c-th comes floor(c quickest) ticks after that edge at the
+    earliest; one overdue (no edge since it was due: the period is not a whole number of ticks, or the box slowed)
+    comes from the next tick on, and the ones after it are counted from there."""
     if quickest is None:
         return np.zeros(1, np.int64)
     made_by = [min(_most_moves(waited + step, quickest), 1 + _most_moves(step - 1, quickest))
