@@ -8,9 +8,10 @@ random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named sc
 sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
 and box avoidance off or on; exact replanning (K column "exact") with box avoidance off or on. Per group, K and
 setting: worlds, reached %, collisions, hits (ticks a box sat on the robot), mean and max ratio to the oracle (over
-the worlds the oracle reached), hit events (runs of hit ticks: how often a box drove onto the robot), detections and the fraction the exact pair distances justify (as in
-``benchmarks.worlds``; a detection made ahead of a predicted closure counts as justified only if the closure comes
-within the look-back window), yields, and for the named scenarios the ticks from the change to the turn.
+the worlds the oracle reached), hit events (runs of hit ticks: how often a box drove onto the robot), detections and
+the fraction the exact pair distances justify (as in ``benchmarks.worlds``; a detection made ahead of a predicted
+closure counts as justified only if the closure comes within the look-back window), yields, and for the named
+scenarios the ticks from the change to the turn.
 ``--held-out`` runs ``benchmarks/specs/predict-held-out.yaml`` instead: box avoidance on seeds the tracker's rules
 were not tuned on (crossing worlds of seeds 400-599, cluttered and moving-target ones of 400-449, at 60² and 100²).
 """

@@ -50,9 +50,9 @@ class Track:
         """Per axis (rows, cols) of a box slower than a cell per tick, the fewest ticks a one-cell move along it may
         take as the edges seen allow (None along an axis it does not move on): n cells moved between edges S ticks
         apart, each seen at the first tick after the move, say the period P is more than (S - 1) / n, that is 1 /
-        speed less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
-        and a window of whole periods of 3 ticks missed the move that came after 2. With one edge since a turn, the
-        period as it went."""
+        speed less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart
+        say 0.33, and a window of whole periods of 3 ticks missed the move that came after 2. With one edge since a
+        turn, the period as it went."""
         (first, start), (last, end) = self.seen[0], self.seen[-1]
         return tuple(_quickest_period(float(speed), float(cells), last - first)
                      for speed, cells in zip(np.abs(self.velocity), np.abs(end - start)))

@@ -140,10 +140,11 @@ def test_a_box_moving_up_slower_than_right_is_expected_up_counting_from_its_last
     cell per tick right, a quarter up); its next move is up, at tick 11. At tick 10 its edge is its right column
     (rows 8-9, col 16) and its velocity (-0.25, 0.5). Moved by the direction's whole-cell steps, (-1, 1) or (0, 1),
     counted from that edge, the edge never went straight up: a robot beside the box's top corner was driven over
-    (crossing worlds with avoid_boxes). Rows and cols move apart: one row in the last four edges (4 ticks) says a period of more than 3
-    ticks, the last move up was at tick 7, so the next may come at tick 11; a col every 1.5 ticks or more, the last
-    at tick 10, so at tick 11 too: the edge is expected shifted (-1, 0), (0, 1) and (-1, 1) at tick 11
-    (hand-computed). Cell (7, 15), which the box also enters then, is not: the tracker knows it by its edge."""
+    (crossing worlds with avoid_boxes). Rows and cols move apart: one row in the last four edges (4 ticks) says a
+    period of more than 3 ticks, the last move up was at tick 7, so the next may come at tick 11; a col every 1.5
+    ticks or more, the last at tick 10, so at tick 11 too: the edge is expected shifted (-1, 0), (0, 1) and (-1, 1)
+    at tick 11 (hand-computed). Cell (7, 15), which the box also enters then, is not: the tracker knows it by its
+    edge."""
     predictor = MotionPredictor((30, 40))
     row, col, before = 10, 10, set()
     for tick in range(11):
