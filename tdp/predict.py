@@ -46,15 +46,15 @@ class Track:
         self.bounds = _bounds(self.edge)
 
     @property
-    def quickest(self) -> tuple[float | None, float | None]:
-        """Per axis (rows, cols) of a box slower than a cell per tick, the fewest ticks a one-cell move along it may
-        take as the edges seen allow (None along an axis it does not move on): n cells moved between edges S ticks
-        apart, each seen at the first tick after the move, say the period P is more than (S - 1) / n, that is 1 /
-        speed less 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart
-        say 0.33, and a window of whole periods of 3 ticks missed the move that came after 2. With one edge since a
-        turn, the period as it went."""
+    def periods(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
+        """Per axis (rows, cols) of a box slower than a cell per tick, the fewest and the most ticks a one-cell move
+        along it may take as the edges seen allow (None along an axis it does not move on): n cells moved between
+        edges S ticks apart, each seen at the first tick after the move, say the period P lies between (S - 1) / n
+        and (S + 1) / n - 1 / speed give or take 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks;
+        three moves seen 3 ticks apart say 0.33, and a window of whole periods of 3 ticks missed the move that came
+        after 2. With one edge since a turn, the period as it went."""
         (first, start), (last, end) = self.seen[0], self.seen[-1]
-        return tuple(_quickest_period(float(speed), float(cells), last - first)
+        return tuple(_periods(float(speed), float(cells), last - first)
                      for speed, cells in zip(np.abs(self.velocity), np.abs(end - start)))
 
     @property
@@ -123,10 +123,11 @@ class MotionPredictor:
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
         first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time
-        along each axis, rows and cols apart, every P ticks, P no less than its edges allow (:attr:`Track.quickest`):
+        along each axis, rows and cols apart, every P ticks, P within what its edges allow (:attr:`Track.periods`):
         its k-th move along an axis after its last edge comes floor(k P) ticks after it at the earliest (a box seen
         every other tick is not expected every tick), a move overdue (no edge seen since it was due) from the next
-        tick on; a faster one sweeps as in
+        tick on, and a cell is flagged from the first tick both its rows' and its cols' moves fit (a diagonal box
+        keeps one pace on both); a faster one sweeps as in
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
         than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
         within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
@@ -169,13 +170,14 @@ class MotionPredictor:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
             return offsets, segment + 1
-        counts = [_counts_by_step(quickest, waited + track.tick - moved, ahead)
-                  for quickest, moved in zip(track.quickest, track.moved_at)]
-        earliest = np.maximum.outer(*counts)  # a box's rows and cols move apart (a diagonal box rounds each its way)
+        first, last = zip(*(_steps_by_count(periods, waited + track.tick - moved, ahead)
+                            for periods, moved in zip(track.periods, track.moved_at)))
+        earliest = np.maximum.outer(*first)  # a box's rows and cols move apart (a diagonal box rounds each its way),
+        possible = earliest <= np.minimum.outer(*last)  # but at one pace: both counts must fit the same tick
         signs = np.sign(track.velocity).astype(np.int64)
-        rows, cols = np.indices(earliest.shape)
-        offsets = np.column_stack([rows.ravel() * signs[0], cols.ravel() * signs[1]])
-        return offsets[1:], earliest.ravel()[1:]  # (0, 0), where the edge is, left out
+        rows, cols = np.nonzero(possible)
+        keep = (rows > 0) | (cols > 0)  # (0, 0), where the edge is, left out
+        return np.column_stack([rows[keep] * signs[0], cols[keep] * signs[1]]), earliest[rows[keep], cols[keep]]
 
     def entering(self, tick: int, horizon: int) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the tracked obstacles' leading edges are predicted to sweep over
@@ -191,28 +193,33 @@ class MotionPredictor:
         return cells[self._inside(cells)]
 
 
-def _quickest_period(speed: float, cells: float, ticks: int) -> float | None:
-    """The fewest ticks a move along an axis may take (:attr:`Track.quickest`) for a box seen to move ``cells``
-    along it in ``ticks`` at ``speed`` cells per tick; None where it does not move along it."""
+def _periods(speed: float, cells: float, ticks: int) -> tuple[float, float] | None:
+    """The fewest and most ticks a move along an axis may take (:attr:`Track.periods`) for a box seen to move
+    ``cells`` along it in ``ticks`` at ``speed`` cells per tick; None where it does not move along it."""
     if speed <= 0.0:
         return None
     period = 1.0 / speed
     if ticks == 0 or cells < 1.0:
-        return period
-    return round(max(1.0, period - 1.0 / cells), 9)  # a whole period stays whole
+        return period, period
+    return round(max(1.0, period - 1.0 / cells), 9), round(period + 1.0 / cells, 9)  # whole periods stay whole
 
 
-def _counts_by_step(quickest: float | None, waited: int, ahead: int) -> np.ndarray:
-    """For 0, 1, 2 ... one-cell moves along an axis, the first of the next ``ahead`` ticks (1 = the next; 0 for
-    none) by which a box whose moves take at least ``quickest`` ticks may have made them, ``waited`` ticks after
-    its last edge that moved it along the axis: the c-th comes floor(c quickest) ticks after that edge at the
-    earliest; one overdue (no edge since it was due: the period is not a whole number of ticks, or the box slowed)
-    comes from the next tick on, and the ones after it are counted from there."""
-    if quickest is None:
-        return np.zeros(1, np.int64)
-    made_by = [min(_most_moves(waited + step, quickest), 1 + _most_moves(step - 1, quickest))
-               for step in range(1, ahead + 1)]
-    return np.concatenate([[0], np.searchsorted(made_by, np.arange(1, made_by[-1] + 1)) + 1]).astype(np.int64)
+def _steps_by_count(periods: tuple[float, float] | None, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
+    """For 0, 1, 2 ... one-cell moves along an axis, the first and the last of the next ``ahead`` ticks (1 = the
+    next; 0 for none) at which a box whose moves take ``periods`` (fewest, most ticks) may have made that many and
+    no more, ``waited`` ticks after its last edge that moved it along the axis. The c-th comes floor(c fewest) ticks
+    after that edge at the earliest; one overdue (no edge since it was due: the period is not a whole number of
+    ticks, or the box slowed) comes from the next tick on, and the ones after it are counted from there. At the
+    most's pace, counted from now (the least it can have made), floor(s / most) are made by tick s."""
+    if periods is None:
+        return np.zeros(1, np.int64), np.full(1, ahead, np.int64)
+    fewest, most = periods
+    steps = np.arange(1, ahead + 1)
+    made_most = [min(_most_moves(waited + step, fewest), 1 + _most_moves(step - 1, fewest)) for step in steps]
+    counts = np.arange(made_most[-1] + 1)
+    first = np.where(counts > 0, np.searchsorted(made_most, counts) + 1, 0)
+    last = np.searchsorted(np.floor(steps / most), counts, side="right")
+    return first.astype(np.int64), last.astype(np.int64)
 
 
 def _most_moves(ticks: int, period: float) -> int:

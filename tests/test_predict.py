@@ -60,7 +60,7 @@ def test_a_box_seen_every_other_tick_is_expected_within_the_periods_its_edges_al
         predictor.observe(tick, column(col))
         predictor.observe(tick + 1, np.zeros((0, 2)))
     np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, 0.5])
-    assert predictor.tracks[0].quickest == (None, 1.5)
+    assert predictor.tracks[0].periods == (None, (1.5, 2.5))
     assert predictor.arrivals(6, 2) == {cell: 1 for cell in cells_of(column(13))}
     assert predictor.arrivals(6, 3) == {**{cell: 1 for cell in cells_of(column(13))},
                                         **{cell: 3 for cell in cells_of(column(14))}}
