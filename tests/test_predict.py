@@ -157,6 +157,26 @@ def test_a_box_moving_up_slower_than_right_is_expected_up_counting_from_its_last
     assert predictor.arrivals(10, 1) == {cell: 1 for cell in [(7, 16), (8, 16), (8, 17), (9, 17), (7, 17)]}
 
 
+def test_a_diagonal_box_keeps_one_pace_on_its_rows_and_its_cols():
+    """A 2 x 2 box going down and to the right, a row and a col every two ticks (edges at ticks 2, 4, 6, 8, its
+    corner at (14, 14) after the last): three cells in six ticks on each axis say 5/3 to 7/3 ticks a move. Eight ticks
+    ahead its rows and its cols may each have made 0 to 5 moves, but not apart: four cols while no row would need the
+    cols at the fastest pace and the rows at less than the slowest. Hand-computed: (18, 18), its edge moved (3, 3),
+    from tick 13 (the third move 5 ticks after the last at the earliest); (15, 16), moved (0, 1), from tick 9; (15,
+    19) and (19, 15), moved (0, 4) and (4, 0), never (each axis on its own flagged them at tick 14)."""
+    predictor = MotionPredictor((40, 40))
+    before = set()
+    for tick in range(9):
+        corner = 10 + tick // 2
+        box = {(r, c) for r in (corner, corner + 1) for c in (corner, corner + 1)}
+        predictor.observe(tick, np.array(sorted(box - before)).reshape(-1, 2))
+        before = box
+    np.testing.assert_allclose(predictor.tracks[0].periods, [(5 / 3, 7 / 3)] * 2)
+    arrivals = predictor.arrivals(8, 8)
+    assert arrivals[(18, 18)] == 5 and arrivals[(15, 16)] == 1
+    assert not {(15, 19), (19, 15), (14, 19), (19, 14)} & set(arrivals)
+
+
 def test_a_door_that_closes_once_is_never_predicted():
     predictor = MotionPredictor((20, 30))
     predictor.observe(1, np.array([(r, c) for r in range(5, 7) for c in range(3, 9)]))
