@@ -1,6 +1,10 @@
 """Obstacle prediction: the tracker on hand-made motions, and the navigator with prediction on."""
+import math
+
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import tdp
 from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
@@ -175,6 +179,40 @@ def test_a_diagonal_box_keeps_one_pace_on_its_rows_and_its_cols():
     arrivals = predictor.arrivals(8, 8)
     assert arrivals[(18, 18)] == 5 and arrivals[(15, 16)] == 1
     assert not {(15, 19), (19, 15), (14, 19), (19, 14)} & set(arrivals)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.26, 0.95), st.floats(-0.5, 0.49), st.integers(1, 3), st.integers(1, 3),
+       st.sampled_from([(0, 1), (0, -1), (1, 0), (-1, 0)]))
+def test_a_slow_box_along_an_axis_is_never_expected_later_than_it_enters_a_cell(speed, phase, rows, cols, way):
+    """A box at a constant speed below a cell a tick along a row or a column, its corner rounded as the worlds round
+    it, at any phase, seen only by the cells it newly covers (as a planner sees a box on the map from the start):
+    from tick 8 on, every cell its edge moves onto in the next 8 ticks is flagged at or before the tick it enters
+    (whole periods of the speed read from its edges missed 3,304 of 83,550 such cells on 400 random boxes, 543 of them
+    never flagged)."""
+    def corner(tick):
+        travelled = math.floor(phase + tick * speed + 0.5)
+        return 40 + way[0] * travelled, 40 + way[1] * travelled
+
+    def box(tick):
+        top, left = corner(tick)
+        return {(top + i, left + j) for i in range(rows) for j in range(cols)}
+
+    predictor = MotionPredictor((80, 80))
+    before = box(0)
+    for tick in range(1, 24):
+        now = box(tick)
+        predictor.observe(tick, np.array(sorted(now - before)).reshape(-1, 2))
+        before = now
+        if tick < 8:
+            continue
+        (track,) = predictor.tracks
+        arrivals = predictor.arrivals(tick, 8)
+        for step in range(1, 9):
+            shift = np.subtract(corner(tick + step), corner(track.tick))
+            for cell in map(tuple, (track.edge + shift).tolist()):
+                if shift.any():
+                    assert arrivals.get(cell, math.inf) <= step, (tick, step, cell)
 
 
 def test_a_door_that_closes_once_is_never_predicted():
