@@ -163,9 +163,10 @@ class MotionPredictor:
     @staticmethod
     def _moves(track: Track, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
         """The offsets ((m, 2) cells) a track's edge may move by in the next ``ahead`` ticks, ``waited`` ticks after
-        its last edge was seen, and the tick (1 = the next) of each. A slow box seen not to move since (a move
-        overdue: its period is not a whole number of ticks, or it slowed) has made none of its moves yet: they are
-        counted from now on at the least."""
+        its last edge was seen, and the tick (1 = the next) of each. A slow box's moves are counted along each axis
+        from the last edge that moved it along that axis (:func:`_steps_by_count`); one seen not to move since (a
+        move overdue: its period is not a whole number of ticks, or it slowed) has made none of its moves yet: they
+        are counted from now on at the least."""
         if track.speed >= 1.0:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
