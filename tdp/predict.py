@@ -30,27 +30,27 @@ HISTORY = 4
 
 @dataclass
 class Track:
-    """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, its ``velocity``
+    """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, the edge's
+    ``bounds`` (least row and col, then greatest: :func:`_bounds`, taken once for matching it), its ``velocity``
     (rows, cols per tick, over its last HISTORY edges; None until it has been matched once), and those edges'
     (tick, position): the first edge's centre, moved on by each :func:`edge_shift` since."""
 
     edge: np.ndarray
     tick: int
+    bounds: tuple[int, int, int, int]
     velocity: np.ndarray | None = None
     seen: tuple = ()
     speed: float = field(init=False)  # the velocity's largest row or col component, in cells per tick (0: unknown)
-    bounds: tuple[int, int, int, int] = field(init=False)  # the edge's least row and col, then its greatest
 
     def __post_init__(self):
         self.speed = 0.0 if self.velocity is None else float(np.abs(self.velocity).max())
-        self.bounds = _bounds(self.edge)
 
     @property
     def periods(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
         """Per axis (rows, cols) of a box slower than a cell per tick, the fewest and the most ticks a one-cell move
         along it may take as the edges seen allow (None along an axis it does not move on): n cells moved between
         edges S ticks apart, each seen at the first tick after the move, say the period P lies between (S - 1) / n
-        and (S + 1) / n - 1 / speed give or take 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks;
+        and (S + 1) / n, that is 1 / speed give or take 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks;
         three moves seen 3 ticks apart say 0.33, and a window of whole periods of 3 ticks missed the move that came
         after 2. With one edge since a turn, the period as it went."""
         (first, start), (last, end) = self.seen[0], self.seen[-1]
@@ -102,7 +102,7 @@ class MotionPredictor:
                 track = previous[index]
                 expected = None if track.velocity is None else track.velocity * (tick - track.tick)
                 velocity, seen = _continued(track, tick, edge_shift(track.bounds, bounds, expected))
-            tracks.append(Track(edge, tick, velocity, seen))
+            tracks.append(Track(edge, tick, bounds, velocity, seen))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
