@@ -30,20 +30,13 @@ SETTINGS = {(0, False): "off", (4, False): "predict 4", (0, True): "avoid", (4, 
 
 
 def prediction_metrics(scenario: tdp.Scenario, record: dict, planner, config: tdp.NavigatorConfig) -> dict:
-    """Sweep metric: :func:`benchmarks.worlds.truth_metrics`, and for a scenario with a blocking box the ticks
-    from the change to the turn and the closest approach (:func:`benchmarks.common.turn_and_closest`)."""
-    row = {**truth_metrics(scenario, record, planner, config), "hit_events": hit_events(scenario, record["trajectory"])}
+    """Sweep metric: :func:`benchmarks.worlds.truth_metrics`, the hit events (:func:`tdp.simulate.run_planner`'s),
+    and for a scenario with a blocking box the ticks from the change to the turn and the closest approach
+    (:func:`benchmarks.common.turn_and_closest`)."""
+    row = {**truth_metrics(scenario, record, planner, config), "hit_events": record["hit_events"]}
     if scenario.blocking is not None and scenario.change_tick is not None:
         row.update(turn_against_unblocked(scenario, record["trajectory"]))
     return row
-
-
-def hit_events(scenario: tdp.Scenario, trajectory: list) -> int:
-    """The runs of consecutive ticks on which a box sat on the robot or passed over it (the ticks are the episode's
-    ``hits``, as :func:`tdp.simulate.run_planner` counts them: at tick t the robot is where tick t - 1 left it)."""
-    hit = [bool(scenario.occupancy(tick)[cell] or scenario.jumped_over(tick, cell))
-           for tick, cell in enumerate(map(tuple, trajectory[:-1]), start=1)]
-    return sum(now and not before for before, now in zip([False] + hit, hit))
 
 
 def planner_k(row: dict) -> str:

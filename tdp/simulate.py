@@ -70,8 +70,8 @@ def _legal(move_table: dict, occupied: np.ndarray, here, there) -> bool:
 def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, max_ticks: int, on_tick=None) -> dict:
     """Drive ``planner`` (any :class:`~tdp.contract.Planner`: a :class:`~tdp.navigator.Navigator`, an
     :class:`~tdp.exact.ExactPlanner`, or a baseline such as D* Lite) through the scenario, tick by tick; returns the
-    raw record (trajectory, modes, length in cells, collisions, hits, ticks, reached, the planner's TickResults, the
-    target's path).
+    raw record (trajectory, modes, length in cells, collisions, hits, hit_events - the runs of consecutive hit
+    ticks: how often a box drove onto the robot -, ticks, reached, the planner's TickResults, the target's path).
 
     ``config`` gives the stencil the moves are checked against. Each TickResult's ``timings["update"]`` is the time
     the planner spent taking the tick's map and goal changes (its update_map and set_goal; building the world's
@@ -80,15 +80,19 @@ def run_planner(scenario: Scenario, planner: Planner, config: NavigatorConfig, m
     table = _allowed_moves(config)
     robot, target = scenario.start, scenario.goal
     feed = WorldFeed(scenario.occupancy(0), target)
-    record = {"trajectory": [robot], "modes": [], "length": 0.0, "collisions": 0, "hits": 0, "ticks": 0,
-              "reached": robot == target, "results": [], "target_path": [target]}
+    record = {"trajectory": [robot], "modes": [], "length": 0.0, "collisions": 0, "hits": 0, "hit_events": 0,
+              "ticks": 0, "reached": robot == target, "results": [], "target_path": [target]}
+    was_hit = False
     for tick in range(1, max_ticks + 1):
         if record["reached"]:
             break
         occupied, target = scenario.occupancy(tick), scenario.target(tick)
         if feed.update(planner, occupied, target):
             record["target_path"].append(target)
-        record["hits"] += int(occupied[robot] or scenario.jumped_over(tick, robot))
+        hit = bool(occupied[robot] or scenario.jumped_over(tick, robot))
+        record["hits"] += hit
+        record["hit_events"] += hit and not was_hit
+        was_hit = hit
         result = planner.tick()
         result.timings["update"] = feed.planner_s
         wanted = result.next_cell
