@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -32,49 +33,75 @@ HISTORY = 4
 class Track:
     """One moving obstacle: its last leading ``edge`` ((n, 2) cells), the ``tick`` it was seen, the edge's
     ``bounds`` (least row and col, then greatest: :func:`_bounds`, taken once for matching it), its ``velocity``
-    (rows, cols per tick, over its last HISTORY edges; None until it has been matched once), and those edges'
-    (tick, position): the first edge's centre, moved on by each :func:`edge_shift` since."""
+    (rows, cols per tick, over its last HISTORY edges; None until it has been matched once), those edges'
+    (tick, position): the first edge's centre, moved on by each :func:`edge_shift` since, the ``origin``: the (tick,
+    position) of the edge the track (re)started from and the axes it surely moved the box along
+    (:func:`_moved_along`), per axis (rows, cols) the (tick, place along it) of the last HISTORY edges since then that
+    moved the box along it, and the slowest speed tracked (``min_speed``, cells per tick)."""
 
     edge: np.ndarray
     tick: int
     bounds: tuple[int, int, int, int]
     velocity: np.ndarray | None = None
     seen: tuple = ()
+    origin: tuple = ()
+    axis_moves: tuple = ((), ())
+    min_speed: float = 0.25
     speed: float = field(init=False)  # the velocity's largest row or col component, in cells per tick (0: unknown)
 
     def __post_init__(self):
         self.speed = 0.0 if self.velocity is None else float(np.abs(self.velocity).max())
 
-    @property
+    @cached_property
     def periods(self) -> tuple[tuple[float, float] | None, tuple[float, float] | None]:
-        """Per axis (rows, cols) of a box slower than a cell per tick, the fewest and the most ticks a one-cell move
-        along it may take as the edges seen allow (None along an axis it does not move on): n cells moved between
-        edges S ticks apart, each seen at the first tick after the move, say the period P lies between (S - 1) / n
-        and (S + 1) / n, that is 1 / speed give or take 1 / n. A box at 0.375 cells per tick moves every 2 or 3 ticks;
-        three moves seen 3 ticks apart say 0.33, and a window of whole periods of 3 ticks missed the move that came
-        after 2. With one edge since a turn, the period as it went."""
-        (first, start), (last, end) = self.seen[0], self.seen[-1]
-        return tuple(_periods(float(speed), float(cells), last - first)
-                     for speed, cells in zip(np.abs(self.velocity), np.abs(end - start)))
+        """Per axis (rows, cols) of a box no faster than a cell per tick, the fewest and the most ticks a one-cell move
+        along it may take as the edges seen allow (None along an axis it does not move on), from the edges that
+        moved it along that axis (:attr:`axis_moves`; a diagonal box moves its rows and its cols on different ticks,
+        and an edge that moved only its cols says nothing of when its rows moved): n cells moved between edges S
+        ticks apart, each seen at the first tick after the move, say the period P lies between (S - 1) / n and
+        (S + 1) / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
+        and a window of whole periods of 3 ticks missed the move that came after 2. The edge the track started from
+        counts as a move along the axis where its shape says it moved the box along it (:func:`_moved_along`); where
+        it may not have (its move before came earlier), with one move since, P is more than (S - 1) / n, with no
+        bound above. With none (since a turn), 1 / speed, and up to a tick more."""
+        start_tick, start, start_moved = self.origin
+        return tuple(_periods(abs(speed), (start_tick, place), moves, moved)
+                     for speed, place, moves, moved in zip(self.velocity.tolist(), start.tolist(), self.axis_moves,
+                                                           start_moved))
 
-    @property
+    @cached_property
     def moved_at(self) -> tuple[int, int]:
-        """Per axis (rows, cols), the tick of the last edge that moved the box along it (the first edge held, where
-        none did): a box going up and to the right at unequal speeds shows its rows' moves and its cols' apart, and
-        its next move up is due counting from its last move up, not from its last edge."""
-        return tuple(next((tick for (tick, now), (_, then) in zip(self.seen[::-1], self.seen[-2::-1])
-                           if abs(now[axis] - then[axis]) >= 0.5), self.seen[0][0]) for axis in (0, 1))
+        """Per axis (rows, cols), the tick of the last edge that moved the box along it (the edge the track started
+        from, where none did): a box going up and to the right at unequal speeds shows its rows' moves and its cols'
+        apart, and its next move up is due counting from its last move up, not from its last edge."""
+        return tuple(moves[-1][0] if moves else self.origin[0] for moves in self.axis_moves)
+
+    @cached_property
+    def signs(self) -> np.ndarray:
+        """Per axis (rows, cols), the way the box moves along it (-1, 0 or 1): that of its last move along it, or of
+        its velocity where it has made none since the track started (a box moving right with a slow drift up shows
+        no move up in most of its last HISTORY edges)."""
+        return np.array([np.sign(moves[-1][1] - (moves[-2][1] if len(moves) > 1 else self.origin[1][axis]))
+                         if moves else np.sign(self.velocity[axis]) for axis, moves in enumerate(self.axis_moves)],
+                        np.int64)
 
     @property
     def position(self) -> np.ndarray:
         """Where the track is (rows, cols): its first edge's centre moved on by each shift seen since."""
         return self.seen[-1][1]
 
-    def alive_at(self, tick: int, min_speed: float) -> bool:
-        """Whether the obstacle is still taken to be moving at ``tick``: its next edge is due within the ticks a
-        one-cell move takes at its speed (at ``min_speed`` while its speed is not known yet), plus one."""
-        speed = min_speed if self.velocity is None else self.speed
-        return speed > 0 and tick - self.tick <= math.ceil(1.0 / max(speed, min_speed)) + 1
+    @cached_property
+    def moving_until(self) -> int:
+        """The last tick the obstacle is still taken to be moving: along some axis, its next move is due within the
+        most ticks a one-cell move along it may take (:attr:`periods`, rounded up; at most 1 / ``min_speed``, and
+        that and a tick more while its velocity is not known yet), counted from its last move along that axis
+        (:attr:`moved_at`). Not from its velocity: a diagonal box at a third of a cell a tick may show its first two
+        edges a tick apart, a move down and then one right, and read a cell a tick."""
+        slowest = 1.0 / self.min_speed
+        if self.velocity is None:
+            return self.tick + math.ceil(slowest) + 1
+        return max((moved + math.ceil(min(periods[1], slowest))
+                    for periods, moved in zip(self.periods, self.moved_at) if periods is not None), default=-1)
 
 
 class MotionPredictor:
@@ -90,19 +117,21 @@ class MotionPredictor:
 
     def observe(self, tick: int, became_occupied: np.ndarray) -> None:
         """Take the cells ((n, 2) row, col) that became occupied at ``tick`` (ticks must not go back)."""
-        previous = [track for track in self.tracks if track.alive_at(tick, self.min_speed)]
+        previous = [track for track in self.tracks if tick <= track.moving_until]
         matched: set[int] = set()
         tracks = []
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
             bounds = _bounds(edge)
             index = self._match(edge, bounds, tick, previous, matched)
-            velocity, seen = None, ((tick, edge.sum(axis=0) / len(edge)),)  # the centre, without np.mean's dispatch
+            velocity, seen, axis_moves = None, ((tick, edge.sum(axis=0) / len(edge)),), ((), ())  # the centre
             if index is not None:
                 matched.add(index)
                 track = previous[index]
                 expected = None if track.velocity is None else track.velocity * (tick - track.tick)
-                velocity, seen = _continued(track, tick, edge_shift(track.bounds, bounds, expected))
-            tracks.append(Track(edge, tick, bounds, velocity, seen))
+                signs = np.sign(_lean(track.edge) + _lean(edge)) if track.velocity is None else track.signs
+                velocity, seen, axis_moves = _continued(track, tick, edge_shift(track.bounds, bounds, expected, signs))
+            origin = (*seen[0], _moved_along(edge, bounds)) if len(seen) == 1 else previous[index].origin
+            tracks.append(Track(edge, tick, bounds, velocity, seen, origin, axis_moves, self.min_speed))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
@@ -122,7 +151,7 @@ class MotionPredictor:
     def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
         """For each cell (inside the map) a tracked box may move into within ``ahead`` ticks after ``tick``, the
-        first such tick (1 = the next) over every box. A box slower than a cell per tick moves a cell at a time
+        first such tick (1 = the next) over every box. A box no faster than a cell per tick moves a cell at a time
         along each axis, rows and cols apart, every P ticks, P within what its edges allow (:attr:`Track.periods`):
         its k-th move along an axis after its last edge comes floor(k P) ticks after it at the earliest (a box seen
         every other tick is not expected every tick), a move overdue (no edge seen since it was due) from the next
@@ -153,7 +182,7 @@ class MotionPredictor:
         """The tracks with a velocity that are still taken to be moving at ``tick``; with ``near`` (a cell and a
         radius), those that may come within the radius of the cell by ``tick + ahead`` (:func:`_may_reach`)."""
         return [track for track in self.tracks
-                if track.velocity is not None and track.alive_at(tick, self.min_speed)
+                if track.velocity is not None and tick <= track.moving_until
                 and (near is None or _may_reach(track, tick + ahead, *near))]
 
     def _inside(self, cells: np.ndarray) -> np.ndarray:
@@ -167,7 +196,7 @@ class MotionPredictor:
         from the last edge that moved it along that axis (:func:`_steps_by_count`); one seen not to move since (a
         move overdue: its period is not a whole number of ticks, or it slowed) has made none of its moves yet: they
         are counted from now on at the least."""
-        if track.speed >= 1.0:
+        if track.speed > 1.0:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)
             return offsets, segment + 1
@@ -175,7 +204,7 @@ class MotionPredictor:
                             for periods, moved in zip(track.periods, track.moved_at)))
         earliest = np.maximum.outer(*first)  # a box's rows and cols move apart (a diagonal box rounds each its way),
         possible = earliest <= np.minimum.outer(*last)  # but at one pace: both counts must fit the same tick
-        signs = np.sign(track.velocity).astype(np.int64)
+        signs = track.signs
         rows, cols = np.nonzero(possible)
         keep = (rows > 0) | (cols > 0)  # (0, 0), where the edge is, left out
         return np.column_stack([rows[keep] * signs[0], cols[keep] * signs[1]]), earliest[rows[keep], cols[keep]]
@@ -194,15 +223,23 @@ class MotionPredictor:
         return cells[self._inside(cells)]
 
 
-def _periods(speed: float, cells: float, ticks: int) -> tuple[float, float] | None:
-    """The fewest and most ticks a move along an axis may take (:attr:`Track.periods`) for a box seen to move
-    ``cells`` along it in ``ticks`` at ``speed`` cells per tick; None where it does not move along it."""
-    if speed <= 0.0:
-        return None
-    period = 1.0 / speed
-    if ticks == 0 or cells < 1.0:
-        return period, period
-    return round(max(1.0, period - 1.0 / cells), 9), round(period + 1.0 / cells, 9)  # whole periods stay whole
+def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: bool) -> tuple[float, float] | None:
+    """The fewest and most ticks a move along an axis may take (:attr:`Track.periods`) for a box moving at ``speed``
+    cells per tick along it over its last edges, from the (tick, place along the axis) of the edge it started from,
+    those of its ``moves`` along it since (the last HISTORY), and whether that start is known to have moved it along
+    the axis; None where it does not move along it. With no move since the start (a turn), 1 / speed and a tick
+    more."""
+    if start_moved and len(moves) < HISTORY:  # the start not yet out of the history
+        moves = (start,) + moves
+    bounded = len(moves) > 1
+    if not bounded:  # counted from a start that may not have moved it along the axis (the move before came earlier)
+        moves = (start,) + moves
+    ticks = moves[-1][0] - moves[0][0]
+    cells = sum(abs(after - before) for (_, before), (_, after) in zip(moves, moves[1:]))  # back and forth too
+    if cells < 1.0:  # no move since the start (a turn), or half-cell reads
+        return (1.0 / speed, 1.0 / speed + 1.0) if speed > 0.0 else None
+    fewest = round(max(1.0, (ticks - 1) / cells), 9)  # whole periods stay whole
+    return fewest, round((ticks + 1) / cells, 9) if bounded else math.inf
 
 
 def _steps_by_count(periods: tuple[float, float] | None, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
@@ -278,16 +315,18 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
     return groups
 
 
-def _continued(track: Track, tick: int, shift: np.ndarray) -> tuple[np.ndarray, tuple]:
-    """The velocity and edge history of ``track`` once its next edge is seen at ``tick``, ``shift`` from its last
-    (:func:`edge_shift`): the mean velocity over its last HISTORY edges; a box whose edge moved against its velocity
-    turned back, and is taken to come back at the speed it went, its history starting again from this edge (a mean
-    over edges on both sides of the turn says it barely moves)."""
+def _continued(track: Track, tick: int, shift: np.ndarray) -> tuple[np.ndarray, tuple, tuple]:
+    """The velocity, edge history and per-axis moves (:class:`Track`) of ``track`` once its next edge is seen at
+    ``tick``, ``shift`` from its last (:func:`edge_shift`): the mean velocity over its last HISTORY edges; a box whose
+    edge moved against its velocity turned back, and is taken to come back at the speed it went, its history starting
+    again from this edge (a mean over edges on both sides of the turn says it barely moves)."""
     position = track.position + shift
     if track.velocity is not None and float(np.dot(shift, track.velocity)) < 0:
-        return -track.velocity, ((tick, position),)
+        return -track.velocity, ((tick, position),), ((), ())
     seen = (track.seen + ((tick, position),))[-HISTORY:]
-    return (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), seen
+    axis_moves = tuple((moves + ((tick, float(place)),))[-HISTORY:] if abs(moved) >= 0.5 else moves
+                       for moves, moved, place in zip(track.axis_moves, shift, position))
+    return (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), seen, axis_moves
 
 
 def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
@@ -296,21 +335,48 @@ def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
     return int(low[0]), int(low[1]), int(high[0]), int(high[1])
 
 
+def _moved_along(edge: np.ndarray, bounds: tuple[int, int, int, int]) -> tuple[bool, bool]:
+    """Which axes (rows, cols) a leading ``edge`` ((n, 2) cells, within ``bounds``) surely moved its box along, from
+    its shape: a row of cells (one row, more than one col) a move along rows (a move along cols alone shows a column
+    as tall as the box), a column one along cols, an L (part of a rectangle of more than one row and col) both; a
+    single cell or a whole rectangle (a box that appeared), neither surely."""
+    r0, c0, r1, c1 = bounds
+    height, width = r1 - r0 + 1, c1 - c0 + 1
+    if height == 1 or width == 1:
+        return height == 1 < width, width == 1 < height
+    return (len(edge) < height * width,) * 2
+
+
+def _lean(edge: np.ndarray) -> np.ndarray:
+    """Per axis (rows, cols), the way a leading ``edge`` ((n, 2) cells) leans: 1 where more of its cells lie on its
+    greatest row (col) than on its least, -1 where fewer, else 0. A box moving down and to the right shows its new
+    right column and bottom row: an L with its long arms on the greatest row and col; a row or a column alone leans
+    nowhere."""
+    low, high = edge.min(axis=0), edge.max(axis=0)
+    return np.sign((edge == high).sum(axis=0) - (edge == low).sum(axis=0))
+
+
 def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int],
-               expected: np.ndarray | None = None) -> np.ndarray:
+               expected: np.ndarray | None = None, signs: np.ndarray = (0, 0)) -> np.ndarray:
     """How far a box moved (rows, cols) from one leading edge to the next, given by their bounds (least row and
-    col, then greatest): the shift of one of the four corners or of the middle - the one nearest ``expected`` (the
-    track's velocity times the ticks between), or with none expected the corner that moved least. A box moving
+    col, then greatest), along each axis on its own: the shift of the edges' greatest row (col) where the box moves
+    that way along it (``signs``: -1, 0 or 1 per axis), of their least where it moves the other way; where it is not
+    known to move, the least's, the greatest's or the middle's, whichever is nearest ``expected`` (the track's velocity
+    times the ticks between), or with none expected the least's or the greatest's, whichever moved less. A box moving
     across rows and cols at once shows a row of cells on one tick and a column on another (its top edge as it rises,
-    its right edge as it goes right), whose middles lie half the box apart: read from the middles, a box going up
-    and to the right turned back every tick. The corner towards which it moves is the same cell of the box on both."""
-    (r0, c0, r1, c1), (s0, d0, s1, d1) = before, after
-    corners = [(s0 - r0, d0 - c0), (s0 - r0, d1 - c1), (s1 - r1, d0 - c0), (s1 - r1, d1 - c1)]
-    if expected is None:
-        return np.array(min(corners, key=lambda shift: max(abs(shift[0]), abs(shift[1]))), np.float64)
-    middle = ((s0 + s1 - r0 - r1) / 2, (d0 + d1 - c0 - c1) / 2)
-    return np.array(min(corners + [middle], key=lambda shift: max(abs(shift[0] - expected[0]),
-                                                                   abs(shift[1] - expected[1]))), np.float64)
+    its right edge as it goes right), whose middles lie half the box apart: read from the middles, a box going up and
+    to the right turned back every tick. The corner towards which it moves is the same cell of the box on both (a box
+    at 45 degrees has it, its middles and its other corners equally near what its velocity expects)."""
+    shifts = []
+    for axis, sign in enumerate(signs):
+        low, high = after[axis] - before[axis], after[axis + 2] - before[axis + 2]
+        if sign:
+            shifts.append(high if sign > 0 else low)
+        elif expected is None:
+            shifts.append(min(low, high, key=abs))
+        else:
+            shifts.append(min(low, high, (low + high) / 2, key=lambda shift: abs(shift - expected[axis])))
+    return np.array(shifts, np.float64)
 
 
 def _crosses(velocity: np.ndarray, direction: np.ndarray) -> bool:

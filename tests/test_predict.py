@@ -3,7 +3,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import tdp
@@ -181,18 +181,13 @@ def test_a_diagonal_box_keeps_one_pace_on_its_rows_and_its_cols():
     assert not {(15, 19), (19, 15), (14, 19), (19, 14)} & set(arrivals)
 
 
-@settings(max_examples=60, deadline=None)
-@given(st.floats(0.26, 0.95), st.floats(-0.5, 0.49), st.integers(1, 3), st.integers(1, 3),
-       st.sampled_from([(0, 1), (0, -1), (1, 0), (-1, 0)]))
-def test_a_slow_box_along_an_axis_is_never_expected_later_than_it_enters_a_cell(speed, phase, rows, cols, way):
-    """A box at a constant speed below a cell a tick along a row or a column, its corner rounded as the worlds round
-    it, at any phase, seen only by the cells it newly covers (as a planner sees a box on the map from the start):
-    from tick 8 on, every cell its edge moves onto in the next 8 ticks is flagged at or before the tick it enters
-    (whole periods of the speed read from its edges missed 3,304 of 83,550 such cells on 400 random boxes, 543 of them
-    never flagged)."""
+def assert_never_expected_late(velocity: tuple[float, float], phase: tuple[float, float], rows: int, cols: int):
+    """A box of ``rows`` x ``cols`` cells at a constant ``velocity`` (rows, cols per tick), its corner rounded as the
+    worlds round it at any ``phase``, seen only by the cells it newly covers (as a planner sees a box on the map from
+    the start): from tick 8 on, every cell its edge moves onto in the next 8 ticks is flagged at or before the tick
+    it enters."""
     def corner(tick):
-        travelled = math.floor(phase + tick * speed + 0.5)
-        return 40 + way[0] * travelled, 40 + way[1] * travelled
+        return tuple(40 + math.floor(start + tick * speed + 0.5) for start, speed in zip(phase, velocity))
 
     def box(tick):
         top, left = corner(tick)
@@ -213,6 +208,30 @@ def test_a_slow_box_along_an_axis_is_never_expected_later_than_it_enters_a_cell(
             for cell in map(tuple, (track.edge + shift).tolist()):
                 if shift.any():
                     assert arrivals.get(cell, math.inf) <= step, (tick, step, cell)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.26, 0.95), st.floats(-0.5, 0.49), st.integers(1, 3), st.integers(1, 3),
+       st.sampled_from([(0, 1), (0, -1), (1, 0), (-1, 0)]))
+def test_a_slow_box_along_an_axis_is_never_expected_later_than_it_enters_a_cell(speed, phase, rows, cols, way):
+    """A box below a cell a tick along a row or a column (:func:`assert_never_expected_late`; whole periods of the
+    speed read from its edges missed 3,304 of 83,550 such cells on 400 random boxes, 543 of them never flagged)."""
+    assert_never_expected_late((way[0] * speed, way[1] * speed), (phase, phase), rows, cols)
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.floats(0.2, 0.95), st.floats(0.2, 0.95), st.sampled_from([-1, 1]), st.sampled_from([-1, 1]),
+       st.floats(-0.5, 0.49), st.floats(-0.5, 0.49), st.sampled_from([(1, 1), (1, 2), (2, 1), (2, 2), (2, 3), (3, 2),
+                                                                      (3, 3)]))
+def test_a_slow_diagonal_box_is_never_expected_later_than_it_enters_a_cell(row_speed, col_speed, down, right,
+                                                                           row_phase, col_phase, shape):
+    """A box at any angle, its rows and its cols each at 0.2-0.95 cells a tick (the faster at least 0.27, above the
+    slowest tracked) and so moving along them on different ticks, of sides within a factor 2
+    (:func:`assert_never_expected_late`). Before the tracker counted each axis from the edges that moved the box
+    along it, read its shift by the corner it moves towards and kept it alive by its periods, it flagged 3,000 of the
+    35,745 cells 400 such random boxes entered late or never."""
+    assume(max(row_speed, col_speed) >= 0.27)
+    assert_never_expected_late((down * row_speed, right * col_speed), (row_phase, col_phase), *shape)
 
 
 def test_a_door_that_closes_once_is_never_predicted():
