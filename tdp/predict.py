@@ -4,8 +4,11 @@ for early blockage predictions" (ARCHITECTURE §5.7).
 A box moving over the grid shows, tick by tick, a leading edge: the cells that become occupied. Those cells are
 grouped into 8-connected clusters; a cluster is matched to the track whose last edge it could have come from (a
 similar number of cells, moved within ``max_speed`` cells per elapsed tick: :func:`edge_shift`), and its
-displacement over the ticks between them is the track's velocity. A track whose edge is not seen again within the
-time it takes to move one cell (at its velocity, plus a tick) has stopped and is dropped.
+displacement over the ticks between them is the track's velocity. A box moving across rows and cols at once moves
+them on different ticks: each axis keeps its own moves (the edges that moved the box along it), from which come the
+ticks a move along it takes, and the face its last move along it showed (the box's top row, for one going up),
+which is moved along with it; the cells ahead are those of its last edge and its faces. A track with no move along
+any axis within the most ticks its edges allow a move along it has stopped and is dropped.
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
 learns of each from the next edge it sees, one or two ticks late; a box that turns back is then taken to come back
@@ -37,7 +40,8 @@ class Track:
     (tick, position): the first edge's centre, moved on by each :func:`edge_shift` since, the ``origin``: the (tick,
     position) of the edge the track (re)started from and the axes it surely moved the box along
     (:func:`_moved_along`), per axis (rows, cols) the (tick, place along it) of the last HISTORY edges since then that
-    moved the box along it, and the slowest speed tracked (``min_speed``, cells per tick)."""
+    moved the box along it, per axis the ``faces``: the last edge that moved the box along it, brought along with
+    the box since (None before the first), and the slowest speed tracked (``min_speed``, cells per tick)."""
 
     edge: np.ndarray
     tick: int
@@ -46,6 +50,7 @@ class Track:
     seen: tuple = ()
     origin: tuple = ()
     axis_moves: tuple = ((), ())
+    faces: tuple = (None, None)
     min_speed: float = 0.25
     speed: float = field(init=False)  # the velocity's largest row or col component, in cells per tick (0: unknown)
 
@@ -61,9 +66,10 @@ class Track:
         ticks apart, each seen at the first tick after the move, say the period P lies between (S - 1) / n and
         (S + 1) / n. A box at 0.375 cells per tick moves every 2 or 3 ticks; three moves seen 3 ticks apart say 0.33,
         and a window of whole periods of 3 ticks missed the move that came after 2. The edge the track started from
-        counts as a move along the axis where its shape says it moved the box along it (:func:`_moved_along`); where
-        it may not have (its move before came earlier), with one move since, P is more than (S - 1) / n, with no
-        bound above. With none (since a turn), 1 / speed, and up to a tick more."""
+        counts as a move along the axis where its shape says it moved the box along it (:func:`_moved_along`). With
+        one move, a tick or more (the first reads of a diagonal box, before its direction is known, may have taken a
+        move along one axis for none: a single cell, then a row of two, may be a move up or up and left); with
+        none since a turn, 1 / speed, and up to a tick more."""
         start_tick, start, start_moved = self.origin
         return tuple(_periods(abs(speed), (start_tick, place), moves, moved)
                      for speed, place, moves, moved in zip(self.velocity.tolist(), start.tolist(), self.axis_moves,
@@ -84,6 +90,13 @@ class Track:
         return np.array([np.sign(moves[-1][1] - (moves[-2][1] if len(moves) > 1 else self.origin[1][axis]))
                          if moves else np.sign(self.velocity[axis]) for axis, moves in enumerate(self.axis_moves)],
                         np.int64)
+
+    @cached_property
+    def front(self) -> np.ndarray:
+        """The cells ((n, 2)) the box leads with: its last edge and its faces (:class:`Track`). A box going up and to
+        the right shows its right column after a move right, and its next move up covers its whole top row, which
+        that column shifted up does not: the face its last move up showed, brought right with it, does."""
+        return np.unique(np.vstack([self.edge] + [face for face in self.faces if face is not None]), axis=0)
 
     @property
     def position(self) -> np.ndarray:
@@ -130,8 +143,12 @@ class MotionPredictor:
                 expected = None if track.velocity is None else track.velocity * (tick - track.tick)
                 signs = np.sign(_lean(track.edge) + _lean(edge)) if track.velocity is None else track.signs
                 velocity, seen, axis_moves = _continued(track, tick, edge_shift(track.bounds, bounds, expected, signs))
-            origin = (*seen[0], _moved_along(edge, bounds)) if len(seen) == 1 else previous[index].origin
-            tracks.append(Track(edge, tick, bounds, velocity, seen, origin, axis_moves, self.min_speed))
+            if len(seen) == 1:  # a new track, or one that turned back
+                origin = (*seen[0], _moved_along(edge, bounds))
+                faces = tuple(edge if moved else None for moved in origin[2])
+            else:
+                origin, faces = previous[index].origin, _faces(previous[index].faces, edge, seen[-1][1] - seen[-2][1])
+            tracks.append(Track(edge, tick, bounds, velocity, seen, origin, axis_moves, faces, self.min_speed))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
@@ -160,7 +177,7 @@ class MotionPredictor:
         :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
         than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
         within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
-        moves = [(track.edge, *self._moves(track, tick - track.tick, ahead))
+        moves = [(track.front, *self._moves(track, tick - track.tick, ahead))
                  for track in self._moving(tick, ahead, near) if across is None or _crosses(track.velocity, across)]
         if not moves:
             return {}
@@ -216,7 +233,7 @@ class MotionPredictor:
         for track in self._moving(tick) if horizon >= 1 else []:
             offsets, _ = _swept_offsets(track.velocity[None] * (tick - track.tick),
                                         track.velocity[None] * (tick + horizon - track.tick))
-            found.append(_shifted(track.edge, offsets))
+            found.append(_shifted(track.front, offsets))
         if not found:
             return np.zeros((0, 2), np.int64)
         cells = np.unique(np.vstack(found), axis=0)
@@ -227,19 +244,16 @@ def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: 
     """The fewest and most ticks a move along an axis may take (:attr:`Track.periods`) for a box moving at ``speed``
     cells per tick along it over its last edges, from the (tick, place along the axis) of the edge it started from,
     those of its ``moves`` along it since (the last HISTORY), and whether that start is known to have moved it along
-    the axis; None where it does not move along it. With no move since the start (a turn), 1 / speed and a tick
-    more."""
-    if start_moved and len(moves) < HISTORY:  # the start not yet out of the history
-        moves = (start,) + moves
-    bounded = len(moves) > 1
-    if not bounded:  # counted from a start that may not have moved it along the axis (the move before came earlier)
-        moves = (start,) + moves
-    ticks = moves[-1][0] - moves[0][0]
-    cells = sum(abs(after - before) for (_, before), (_, after) in zip(moves, moves[1:]))  # back and forth too
-    if cells < 1.0:  # no move since the start (a turn), or half-cell reads
-        return (1.0 / speed, 1.0 / speed + 1.0) if speed > 0.0 else None
-    fewest = round(max(1.0, (ticks - 1) / cells), 9)  # whole periods stay whole
-    return fewest, round((ticks + 1) / cells, 9) if bounded else math.inf
+    the axis; None where it does not move along it. With one move (or moves that cancel out), from 1 tick, with no
+    bound above; with none since the start (a turn), 1 / speed and a tick more."""
+    counted = (start,) + moves if start_moved and len(moves) < HISTORY else moves  # the start still in the history
+    ticks = counted[-1][0] - counted[0][0] if counted else 0
+    cells = sum(abs(after - before) for (_, before), (_, after) in zip(counted, counted[1:]))  # back and forth too
+    if cells >= 1.0:
+        return round(max(1.0, (ticks - 1) / cells), 9), round((ticks + 1) / cells, 9)  # whole periods stay whole
+    if moves:  # the move before the one seen came at any time (the first reads of a track may have missed it)
+        return 1.0, math.inf
+    return (1.0 / speed, 1.0 / speed + 1.0) if speed > 0.0 else None
 
 
 def _steps_by_count(periods: tuple[float, float] | None, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
@@ -326,7 +340,16 @@ def _continued(track: Track, tick: int, shift: np.ndarray) -> tuple[np.ndarray, 
     seen = (track.seen + ((tick, position),))[-HISTORY:]
     axis_moves = tuple((moves + ((tick, float(place)),))[-HISTORY:] if abs(moved) >= 0.5 else moves
                        for moves, moved, place in zip(track.axis_moves, shift, position))
-    return (seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), seen, axis_moves
+    velocity = np.round((seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), 9)  # a cell a tick stays 1
+    return velocity, seen, axis_moves
+
+
+def _faces(faces: tuple, edge: np.ndarray, shift: np.ndarray) -> tuple:
+    """A track's faces (:class:`Track`) once its next ``edge`` is seen ``shift`` (rows, cols) from its last: the
+    edge along each axis it moved the box along, the face before it moved on by the shift along the others."""
+    offset = np.rint(shift).astype(np.int64)
+    return tuple(edge if abs(moved) >= 0.5 else None if face is None else face + offset
+                 for face, moved in zip(faces, shift))
 
 
 def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
@@ -360,22 +383,25 @@ def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, in
                expected: np.ndarray | None = None, signs: np.ndarray = (0, 0)) -> np.ndarray:
     """How far a box moved (rows, cols) from one leading edge to the next, given by their bounds (least row and
     col, then greatest), along each axis on its own: the shift of the edges' greatest row (col) where the box moves
-    that way along it (``signs``: -1, 0 or 1 per axis), of their least where it moves the other way; where it is not
-    known to move, the least's, the greatest's or the middle's, whichever is nearest ``expected`` (the track's velocity
-    times the ticks between), or with none expected the least's or the greatest's, whichever moved less. A box moving
-    across rows and cols at once shows a row of cells on one tick and a column on another (its top edge as it rises,
-    its right edge as it goes right), whose middles lie half the box apart: read from the middles, a box going up and
-    to the right turned back every tick. The corner towards which it moves is the same cell of the box on both (a box
-    at 45 degrees has it, its middles and its other corners equally near what its velocity expects)."""
+    that way along it (``signs``: -1, 0 or 1 per axis), of their least where it moves the other way - unless the
+    least's, the greatest's or the middle's is more than a cell nearer ``expected`` (the track's velocity times the
+    ticks between: two boxes whose edges touch are one cluster, whose bounds reach a box further on one side); where
+    it is not known to move, whichever of the three is nearest ``expected``, or with none expected the least's or the
+    greatest's, whichever moved less. A box moving across rows and cols at once shows a row of cells on one tick and
+    a column on another (its top edge as it rises, its right edge as it goes right), whose middles lie half the box
+    apart: read from the middles, a box going up and to the right turned back every tick. The corner towards which
+    it moves is the same cell of the box on both (a box at 45 degrees has it, its middles and its other corners
+    equally near what its velocity expects)."""
     shifts = []
     for axis, sign in enumerate(signs):
         low, high = after[axis] - before[axis], after[axis + 2] - before[axis + 2]
-        if sign:
-            shifts.append(high if sign > 0 else low)
-        elif expected is None:
-            shifts.append(min(low, high, key=abs))
-        else:
-            shifts.append(min(low, high, (low + high) / 2, key=lambda shift: abs(shift - expected[axis])))
+        towards = high if sign > 0 else low
+        if expected is None:
+            shifts.append(towards if sign else min(low, high, key=abs))
+            continue
+        misses = {shift: abs(shift - expected[axis]) for shift in (low, high, (low + high) / 2)}
+        nearest = min(misses, key=misses.get)
+        shifts.append(towards if sign and misses[towards] <= misses[nearest] + 1.0 else nearest)
     return np.array(shifts, np.float64)
 
 
