@@ -27,8 +27,9 @@ import numpy as np
 _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
 
 
-#: Edges a track remembers: its velocity is the mean over them (a box at 0.3 cells per tick shows edges 3, 3 and 4
-#: ticks apart; one interval alone says 0.33 or 0.25).
+#: Edges a track remembers, and moves along each axis: its velocity is the mean over its last edges (a box at 0.3
+#: cells per tick shows edges 3, 3 and 4 ticks apart; one interval alone says 0.33 or 0.25), the ticks a move along an
+#: axis takes come from its last moves along it (Track.periods).
 HISTORY = 4
 
 

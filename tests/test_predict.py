@@ -162,6 +162,20 @@ def test_a_box_moving_up_slower_than_right_is_expected_up_counting_from_its_last
     assert predictor.arrivals(10, 1) == {cell: 1 for cell in [(7, 15), (7, 16), (8, 16), (8, 17), (9, 17), (7, 17)]}
 
 
+def test_a_diagonal_box_s_first_two_edges_are_read_the_way_its_l_leans():
+    """A 3 x 3 box (corner at row 40, col 40) moves right at tick 1 - its new right column, col 43, rows 40-42 - and
+    up and right at tick 3: an L, row 39 at cols 42-44 and col 44 at rows 40-41. The edges' least cols moved -1, their
+    greatest +1, and with no velocity yet neither is the nearer guess (the one that moved least read a box going up
+    and to the left). The L's long arms lie on its least row and greatest col, the way the box moves: it went (-1, 1)
+    in two ticks (hand-computed), and the cells ahead of it lie above and to the right."""
+    predictor = MotionPredictor((80, 80))
+    predictor.observe(1, np.array([(r, 43) for r in range(40, 43)]))
+    predictor.observe(3, np.array([(39, c) for c in range(42, 45)] + [(40, 44), (41, 44)]))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [-0.5, 0.5])
+    ahead = set(predictor.arrivals(3, 2))
+    assert {(38, 45), (39, 45)} <= ahead and all(r <= 41 and c >= 42 for r, c in ahead)
+
+
 def test_a_diagonal_box_keeps_one_pace_on_its_rows_and_its_cols():
     """A 2 x 2 box going down and to the right, a row and a col every two ticks (edges at ticks 2, 4, 6, 8, its
     corner at (14, 14) after the last): three cells in six ticks on each axis say 5/3 to 7/3 ticks a move. Eight ticks
