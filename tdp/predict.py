@@ -97,7 +97,8 @@ class Track:
         """The cells ((n, 2)) the box leads with: its last edge and its faces (:class:`Track`). A box going up and to
         the right shows its right column after a move right, and its next move up covers its whole top row, which
         that column shifted up does not: the face its last move up showed, brought right with it, does."""
-        return np.unique(np.vstack([self.edge] + [face for face in self.faces if face is not None]), axis=0)
+        faces = [face for face in self.faces if face is not None and face is not self.edge]
+        return np.vstack([self.edge] + faces) if faces else self.edge  # a cell twice is flagged once
 
     @property
     def position(self) -> np.ndarray:
