@@ -100,6 +100,12 @@ class Track:
         faces = [face for face in self.faces if face is not None and face is not self.edge]
         return np.vstack([self.edge] + faces) if faces else self.edge  # a cell twice is flagged once
 
+    @cached_property
+    def sizes(self) -> tuple[int, int]:
+        """The fewest and the most cells of the track's last edge and faces."""
+        sizes = [len(self.edge)] + [len(face) for face in self.faces if face is not None]
+        return min(sizes), max(sizes)
+
     @property
     def position(self) -> np.ndarray:
         """Where the track is (rows, cols): its first edge's centre moved on by each shift seen since."""
@@ -156,11 +162,13 @@ class MotionPredictor:
     def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
                taken: set[int]) -> int | None:
         """The previous track this edge (its cells and their ``bounds``) most plausibly continues - the nearest by
-        :func:`edge_shift` within the reach of ``max_speed``, of a similar size -, or None."""
+        :func:`edge_shift` within the reach of ``max_speed``, of a similar size (half the smallest to twice the
+        largest of the track's last edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells) -,
+        or None."""
         best, best_distance = None, math.inf
         for i, track in enumerate(previous):
             elapsed = tick - track.tick
-            if i in taken or elapsed <= 0 or not 0.5 <= len(edge) / len(track.edge) <= 2.0:
+            if i in taken or elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
                 continue
             distance = float(np.abs(edge_shift(track.bounds, bounds)).max())
             if 0 < distance <= self.max_speed * elapsed + 0.5 and distance < best_distance:
