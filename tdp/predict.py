@@ -144,19 +144,15 @@ class MotionPredictor:
         for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
             bounds = _bounds(edge)
             index = self._match(edge, bounds, tick, previous, matched)
-            velocity, seen, axis_moves = None, ((tick, edge.sum(axis=0) / len(edge)),), ((), ())  # the centre
-            if index is not None:
-                matched.add(index)
-                track = previous[index]
-                expected = None if track.velocity is None else track.velocity * (tick - track.tick)
-                signs = np.sign(_lean(track.edge) + _lean(edge)) if track.velocity is None else track.signs
-                velocity, seen, axis_moves = _continued(track, tick, edge_shift(track.bounds, bounds, expected, signs))
-            if len(seen) == 1:  # a new track, or one that turned back
-                origin = (*seen[0], _moved_along(edge, bounds))
-                faces = tuple(edge if moved else None for moved in origin[2])
-            else:
-                origin, faces = previous[index].origin, _faces(previous[index].faces, edge, seen[-1][1] - seen[-2][1])
-            tracks.append(Track(edge, tick, bounds, velocity, seen, origin, axis_moves, faces, self.min_speed))
+            if index is None:
+                centre = edge.sum(axis=0) / len(edge)  # without np.mean's dispatch
+                tracks.append(_started(edge, tick, bounds, centre, None, self.min_speed))
+                continue
+            matched.add(index)
+            track = previous[index]
+            expected = None if track.velocity is None else track.velocity * (tick - track.tick)
+            signs = np.sign(_lean(track.edge) + _lean(edge)) if track.velocity is None else track.signs
+            tracks.append(_continued(track, edge, tick, bounds, edge_shift(track.bounds, bounds, expected, signs)))
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
@@ -339,27 +335,34 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
     return groups
 
 
-def _continued(track: Track, tick: int, shift: np.ndarray) -> tuple[np.ndarray, tuple, tuple]:
-    """The velocity, edge history and per-axis moves (:class:`Track`) of ``track`` once its next edge is seen at
-    ``tick``, ``shift`` from its last (:func:`edge_shift`): the mean velocity over its last HISTORY edges; a box whose
-    edge moved against its velocity turned back, and is taken to come back at the speed it went, its history starting
-    again from this edge (a mean over edges on both sides of the turn says it barely moves)."""
+def _started(edge: np.ndarray, tick: int, bounds: tuple[int, int, int, int], position: np.ndarray,
+             velocity: np.ndarray | None, min_speed: float) -> Track:
+    """A track (re)starting from ``edge`` (seen at ``tick``, within ``bounds``) at ``position``: its history and its
+    origin that edge, its faces the edge along the axes its shape says it moved the box along (:func:`_moved_along`),
+    no move along either axis yet."""
+    moved = _moved_along(edge, bounds)
+    return Track(edge, tick, bounds, velocity, ((tick, position),), (tick, position, moved), ((), ()),
+                 tuple(edge if along else None for along in moved), min_speed)
+
+
+def _continued(track: Track, edge: np.ndarray, tick: int, bounds: tuple[int, int, int, int],
+               shift: np.ndarray) -> Track:
+    """``track`` once its next ``edge`` (within ``bounds``) is seen at ``tick``, ``shift`` from its last
+    (:func:`edge_shift`): the mean velocity over its last HISTORY edges; per axis it moved along, the move and the
+    edge as its face, the other faces moved on by the shift. A box whose edge moved against its velocity turned back,
+    and is taken to come back at the speed it went, its track starting again from this edge (a mean over edges on
+    both sides of the turn says it barely moves)."""
     position = track.position + shift
     if track.velocity is not None and float(np.dot(shift, track.velocity)) < 0:
-        return -track.velocity, ((tick, position),), ((), ())
+        return _started(edge, tick, bounds, position, -track.velocity, track.min_speed)
     seen = (track.seen + ((tick, position),))[-HISTORY:]
-    axis_moves = tuple((moves + ((tick, float(place)),))[-HISTORY:] if abs(moved) >= 0.5 else moves
-                       for moves, moved, place in zip(track.axis_moves, shift, position))
     velocity = np.round((seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), 9)  # a cell a tick stays 1
-    return velocity, seen, axis_moves
-
-
-def _faces(faces: tuple, edge: np.ndarray, shift: np.ndarray) -> tuple:
-    """A track's faces (:class:`Track`) once its next ``edge`` is seen ``shift`` (rows, cols) from its last: the
-    edge along each axis it moved the box along, the face before it moved on by the shift along the others."""
+    along = np.abs(shift) >= 0.5
+    axis_moves = tuple((moves + ((tick, float(place)),))[-HISTORY:] if moved else moves
+                       for moves, moved, place in zip(track.axis_moves, along, position))
     offset = np.rint(shift).astype(np.int64)
-    return tuple(edge if abs(moved) >= 0.5 else None if face is None else face + offset
-                 for face, moved in zip(faces, shift))
+    faces = tuple(edge if moved else None if face is None else face + offset for face, moved in zip(track.faces, along))
+    return Track(edge, tick, bounds, velocity, seen, track.origin, axis_moves, faces, track.min_speed)
 
 
 def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
