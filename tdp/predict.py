@@ -31,6 +31,9 @@ _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0,
 #: cells per tick shows edges 3, 3 and 4 ticks apart; one interval alone says 0.33 or 0.25), the ticks a move along an
 #: axis takes come from its last moves along it (Track.periods).
 HISTORY = 4
+#: The most cells an edge may lie from where a track's velocity expects it for the pair to be taken before those that
+#: do not fit (:meth:`MotionPredictor._assign`): a box's place rounds to whole cells either way, and its edges by a cell.
+FIT = 1.0
 
 
 @dataclass
@@ -139,37 +142,45 @@ class MotionPredictor:
     def observe(self, tick: int, became_occupied: np.ndarray) -> None:
         """Take the cells ((n, 2) row, col) that became occupied at ``tick`` (ticks must not go back)."""
         previous = [track for track in self.tracks if tick <= track.moving_until]
-        matched: set[int] = set()
+        edges = clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2))
+        bounds = [_bounds(edge) for edge in edges]
+        continues = self._assign(edges, bounds, tick, previous)
         tracks = []
-        for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
-            bounds = _bounds(edge)
-            index = self._match(edge, bounds, tick, previous, matched)
-            if index is None:
+        for k, edge in enumerate(edges):
+            if k not in continues:
                 centre = edge.sum(axis=0) / len(edge)  # without np.mean's dispatch
-                tracks.append(_started(edge, tick, bounds, centre, None, self.min_speed))
+                tracks.append(_started(edge, tick, bounds[k], centre, None, self.min_speed))
                 continue
-            matched.add(index)
-            track = previous[index]
-            expected = None if track.velocity is None else track.velocity * (tick - track.tick)
-            signs = np.sign(_lean(track.edge) + _lean(edge)) if track.velocity is None else track.signs
-            tracks.append(_continued(track, edge, tick, bounds, edge_shift(track.bounds, bounds, expected, signs)))
+            track = previous[continues[k]]
+            expected, signs = _expectation(track, edge, tick)
+            tracks.append(_continued(track, edge, tick, bounds[k],
+                                     edge_shift(track.bounds, bounds[k], expected, signs)))
+        matched = set(continues.values())
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
-    def _match(self, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int, previous: list[Track],
-               taken: set[int]) -> int | None:
-        """The previous track this edge (its cells and their ``bounds``) most plausibly continues - the nearest by
-        :func:`edge_shift` within the reach of ``max_speed``, of a similar size (half the smallest to twice the
-        largest of the track's last edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells) -,
-        or None."""
-        best, best_distance = None, math.inf
-        for i, track in enumerate(previous):
-            elapsed = tick - track.tick
-            if i in taken or elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
-                continue
-            distance = float(np.abs(edge_shift(track.bounds, bounds)).max())
-            if 0 < distance <= self.max_speed * elapsed + 0.5 and distance < best_distance:
-                best, best_distance = i, distance
-        return best
+    def _assign(self, edges: list[np.ndarray], bounds: list[tuple[int, int, int, int]], tick: int,
+                previous: list[Track]) -> dict[int, int]:
+        """Which previous track each new edge (its cells and their ``bounds``) continues, by index: every pair within
+        the reach of ``max_speed`` and of a similar size (half the smallest to twice the largest of the track's last
+        edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), the pairs taken in the order
+        of :func:`_miss`, each edge and each track at most once. Taken edge by edge, an edge took the nearest track
+        within reach, and one read first could take the track of another box that touched it, whose own edge, a
+        velocity's move on, then started a track of its own."""
+        pairs = []
+        for k, (edge, bound) in enumerate(zip(edges, bounds)):
+            for i, track in enumerate(previous):
+                elapsed = tick - track.tick
+                if elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
+                    continue
+                distance = float(np.abs(edge_shift(track.bounds, bound)).max())
+                if 0 < distance <= self.max_speed * elapsed + 0.5:
+                    miss = _miss(track, edge, bound, tick)
+                    pairs.append(((0, miss) if miss <= FIT else (1, distance), k, i))
+        continues: dict[int, int] = {}
+        for _, k, i in sorted(pairs):
+            if k not in continues and i not in continues.values():
+                continues[k] = i
+        return continues
 
     def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
                  near: tuple[tuple[int, int], float] | None = None) -> dict[tuple[int, int], int]:
@@ -390,6 +401,24 @@ def _lean(edge: np.ndarray) -> np.ndarray:
     nowhere."""
     low, high = edge.min(axis=0), edge.max(axis=0)
     return np.sign((edge == high).sum(axis=0) - (edge == low).sum(axis=0))
+
+
+def _expectation(track: Track, edge: np.ndarray, tick: int) -> tuple[np.ndarray | None, np.ndarray]:
+    """The shift (rows, cols) ``track``'s velocity expects of its next ``edge``, seen at ``tick`` (None before it
+    has a velocity), and the way it moves along each axis: its own, or before it has a velocity the way its last edge
+    and this one lean (:func:`_lean`)."""
+    if track.velocity is None:
+        return None, np.sign(_lean(track.edge) + _lean(edge))
+    return track.velocity * (tick - track.tick), track.signs
+
+
+def _miss(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int) -> float:
+    """How far, in cells (the larger of rows and cols), ``edge`` (its cells and their ``bounds``), seen at ``tick``,
+    lies from where ``track``'s velocity expects its next edge (infinite before the track has a velocity)."""
+    expected, signs = _expectation(track, edge, tick)
+    if expected is None:
+        return math.inf
+    return float(np.abs(edge_shift(track.bounds, bounds, expected, signs) - expected).max())
 
 
 def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int],

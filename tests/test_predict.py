@@ -269,6 +269,22 @@ def test_two_boxes_passing_each_other_keep_their_own_velocities():
                                                                      column(18, range(10, 12))]))
 
 
+def test_an_edge_continues_the_track_whose_velocity_expects_it_not_the_nearest():
+    """A box going right at two cells a tick, its edge at col 12 (rows 5-7), and at the next tick a new box's edge
+    beside where it was (col 11): a cell from the track's last edge, where the box's own edge (col 14) lies two on, as
+    its velocity expects. Taken nearest first, the new edge took the track - a box that turned back - and the box's
+    own edge started a track with no velocity: nothing was expected ahead of it (hand-computed)."""
+    predictor = MotionPredictor((30, 40))
+    predictor.observe(1, column(10, range(5, 8)))
+    predictor.observe(2, column(12, range(5, 8)))
+    predictor.observe(3, np.vstack([column(14, range(5, 8)), column(11, range(5, 8))]))
+    moving = [track for track in predictor.tracks if track.velocity is not None]
+    assert [(cells_of(track.edge), tuple(track.velocity)) for track in moving] == [
+        (cells_of(column(14, range(5, 8))), (0.0, 2.0))]
+    assert cells_of(predictor.entering(3, 1)) == cells_of(np.vstack([column(15, range(5, 8)),
+                                                                     column(16, range(5, 8))]))
+
+
 def test_predictions_stay_inside_the_map():
     predictor = MotionPredictor((10, 10))
     predictor.observe(1, column(8, range(0, 2)))
