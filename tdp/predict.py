@@ -162,10 +162,10 @@ class MotionPredictor:
                 previous: list[Track]) -> dict[int, int]:
         """Which previous track each new edge (its cells and their ``bounds``) continues, by index: every pair within
         the reach of ``max_speed`` and of a similar size (half the smallest to twice the largest of the track's last
-        edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), the pairs taken in the order
-        of :func:`_miss`, each edge and each track at most once. Taken edge by edge, an edge took the nearest track
-        within reach, and one read first could take the track of another box that touched it, whose own edge, a
-        velocity's move on, then started a track of its own."""
+        edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), taken first those within
+        ``FIT`` of where the track's velocity expects its edge (:func:`_miss`), the best fit first, then the rest
+        nearest first, each edge and each track at most once. Taken edge by edge, nearest first, an edge read first
+        could take another box's track, whose own edge, a velocity's move on, then started a track of its own."""
         pairs = []
         for k, (edge, bound) in enumerate(zip(edges, bounds)):
             for i, track in enumerate(previous):
