@@ -147,23 +147,22 @@ class MotionPredictor:
         continues = self._assign(edges, bounds, tick, previous)
         tracks = []
         for k, edge in enumerate(edges):
-            if k not in continues:
+            if k in continues:
+                i, shift = continues[k]
+                tracks.append(_continued(previous[i], edge, tick, bounds[k], shift))
+            else:
                 centre = edge.sum(axis=0) / len(edge)  # without np.mean's dispatch
                 tracks.append(_started(edge, tick, bounds[k], centre, None, self.min_speed))
-                continue
-            track = previous[continues[k]]
-            expected, signs = _expectation(track, edge, tick)
-            tracks.append(_continued(track, edge, tick, bounds[k],
-                                     edge_shift(track.bounds, bounds[k], expected, signs)))
-        matched = set(continues.values())
+        matched = {i for i, _ in continues.values()}
         self.tracks = tracks + [track for i, track in enumerate(previous) if i not in matched]
 
     def _assign(self, edges: list[np.ndarray], bounds: list[tuple[int, int, int, int]], tick: int,
-                previous: list[Track]) -> dict[int, int]:
-        """Which previous track each new edge (its cells and their ``bounds``) continues, by index: every pair within
+                previous: list[Track]) -> dict[int, tuple[int, np.ndarray]]:
+        """Which previous track each new edge (its cells and their ``bounds``) continues, by index, and the edge's
+        shift from the track's last (:func:`_reading`): every pair within
         the reach of ``max_speed`` and of a similar size (half the smallest to twice the largest of the track's last
         edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), taken first those within
-        ``FIT`` of where the track's velocity expects its edge (:func:`_miss`), the best fit first, then the rest
+        ``FIT`` of where the track's velocity expects its edge (:func:`_reading`), the best fit first, then the rest
         nearest first, each edge and each track at most once. Taken edge by edge, nearest first, an edge read first
         could take another box's track, whose own edge, a velocity's move on, then started a track of its own."""
         pairs = []
@@ -174,12 +173,14 @@ class MotionPredictor:
                     continue
                 distance = float(np.abs(edge_shift(track.bounds, bound)).max())
                 if 0 < distance <= self.max_speed * elapsed + 0.5:
-                    miss = _miss(track, edge, bound, tick)
-                    pairs.append(((0, miss) if miss <= FIT else (1, distance), k, i))
-        continues: dict[int, int] = {}
-        for _, k, i in sorted(pairs):
-            if k not in continues and i not in continues.values():
-                continues[k] = i
+                    shift, miss = _reading(track, edge, bound, tick)
+                    pairs.append(((0, miss) if miss <= FIT else (1, distance), k, i, shift))
+        continues: dict[int, tuple[int, np.ndarray]] = {}
+        taken: set[int] = set()
+        for _, k, i, shift in sorted(pairs, key=lambda pair: pair[:3]):
+            if k not in continues and i not in taken:
+                continues[k] = i, shift
+                taken.add(i)
         return continues
 
     def arrivals(self, tick: int, ahead: int, across: np.ndarray | None = None,
@@ -403,22 +404,17 @@ def _lean(edge: np.ndarray) -> np.ndarray:
     return np.sign((edge == high).sum(axis=0) - (edge == low).sum(axis=0))
 
 
-def _expectation(track: Track, edge: np.ndarray, tick: int) -> tuple[np.ndarray | None, np.ndarray]:
-    """The shift (rows, cols) ``track``'s velocity expects of its next ``edge``, seen at ``tick`` (None before it
-    has a velocity), and the way it moves along each axis: its own, or before it has a velocity the way its last edge
-    and this one lean (:func:`_lean`)."""
+def _reading(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int
+             ) -> tuple[np.ndarray, float]:
+    """The shift (rows, cols) of ``edge`` (its cells and their ``bounds``), seen at ``tick``, from ``track``'s last
+    edge (:func:`edge_shift`, each axis read the way the track moves along it, or before it has a velocity the way
+    its last edge and this one lean: :func:`_lean`), and how far, in cells (the larger of rows and cols), the edge
+    lies from where the track's velocity expects it (infinite before it has one)."""
     if track.velocity is None:
-        return None, np.sign(_lean(track.edge) + _lean(edge))
-    return track.velocity * (tick - track.tick), track.signs
-
-
-def _miss(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int], tick: int) -> float:
-    """How far, in cells (the larger of rows and cols), ``edge`` (its cells and their ``bounds``), seen at ``tick``,
-    lies from where ``track``'s velocity expects its next edge (infinite before the track has a velocity)."""
-    expected, signs = _expectation(track, edge, tick)
-    if expected is None:
-        return math.inf
-    return float(np.abs(edge_shift(track.bounds, bounds, expected, signs) - expected).max())
+        return edge_shift(track.bounds, bounds, None, np.sign(_lean(track.edge) + _lean(edge))), math.inf
+    expected = track.velocity * (tick - track.tick)
+    shift = edge_shift(track.bounds, bounds, expected, track.signs)
+    return shift, float(np.abs(shift - expected).max())
 
 
 def edge_shift(before: tuple[int, int, int, int], after: tuple[int, int, int, int],
