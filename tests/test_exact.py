@@ -56,6 +56,21 @@ def test_a_familys_worlds_look_alike_at_every_size(family):
     assert all(len(w.obstacles) >= 1 for w in worlds.values())
 
 
+@pytest.mark.parametrize("size, seed", [(60, 0), (100, 1), (100, 2), (300, 3)])
+def test_a_passing_worlds_pairs_come_side_by_side_within_a_cell_and_never_overlap(size, seed):
+    """Each pair of a passing world (boxes 2k and 2k + 1) shuttles in neighbouring lanes: some tick finds them side
+    by side 0 or 1 cell apart, and none finds them overlapping."""
+    world = make_world("passing", size, seed)
+    assert len(world.obstacles) in (2, 4)
+    for first, second in zip(world.obstacles[::2], world.obstacles[1::2]):
+        gaps = []
+        for tick in range(world.max_ticks):
+            a, b = first.footprint(tick), second.footprint(tick)
+            gaps.append(sorted(max(a[k], b[k]) - min(a[k + 2], b[k + 2]) for k in (0, 1)))  # < 0: overlapping
+        assert not any(apart[1] < 0 for apart in gaps)
+        assert any(apart[0] < 0 <= apart[1] <= 1 for apart in gaps)
+
+
 def test_a_quick_world_on_a_movingai_map():
     grid = tdp.load_map("tests/data/arena.map")
     ours, reference = both(boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=3, blockage=True))
