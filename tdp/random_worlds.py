@@ -13,7 +13,8 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
 * ``moving-target``: the target walks a free street among clutter and sliding boxes.
 * ``crossing``: one or two boxes keep crossing the robot's route near its middle, back and forth.
 * ``passing``: one or two pairs of boxes shuttle across the route in neighbouring lanes 0-1 cell apart, passing each
-  other the other way or overtaking: boxes that touch and part again, where a tracker must tell one from the other.
+  other the other way or overtaking: boxes that touch and part again, where a tracker must tell one from the other
+  (two pairs sweep a cell clear of each other).
 
 ``make_world(family, size, seed)`` is deterministic: the same arguments give the same :class:`~tdp.world.Scenario`.
 ``maze(size, corridor, seed)`` draws a perfect maze's occupancy, a static map for benchmarks and tests.
@@ -374,7 +375,10 @@ def _passing(size: int, rng) -> Scenario:
     boxes = []
     for fraction in sorted(rng.uniform(0.3, 0.7, int(rng.integers(1, 3)))):
         k = int(fraction * (len(route) - 1))
-        boxes += _passing_pair(rng, size, route[max(0, k - 3):k + 4], keep_out)
+        pair = _passing_pair(rng, size, route[max(0, k - 3):k + 4], keep_out)
+        for box in pair:  # the next pair's sweeps a cell clear of this one's: pairs pass, they do not meet
+            keep_out |= _band(keep_out.shape, box.box, [box.box[:2], box.waypoints[0]], 0)
+        boxes += pair
     if not boxes:
         raise _Redraw
     return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=boxes,
