@@ -12,8 +12,10 @@ any axis within the most ticks its edges allow a move along it has stopped and i
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
 learns of each from the next edge it sees, one or two ticks late; a box that turns back is then taken to come back
-at the speed it went), it knows nothing of obstacles that do not move, and a new box is predicted only from its
-second edge on. No world ids are used.
+at the speed it went), and it knows nothing of obstacles that do not move. A box seen once (a new box, or one whose
+edge no track could have shown: a box turning back at the end of its run shows its far face) has no velocity yet:
+the cells it enters are predicted from its second edge on, and until then it may step a cell either way along the
+axes its edge's shape shows (:meth:`MotionPredictor.arrivals`). No world ids are used.
 """
 from __future__ import annotations
 
@@ -191,12 +193,16 @@ class MotionPredictor:
         its k-th move along an axis after its last edge comes floor(k P) ticks after it at the earliest (a box seen
         every other tick is not expected every tick), a move overdue (no edge seen since it was due) from the next
         tick on, and a cell is flagged from the first tick both its rows' and its cols' moves fit (a diagonal box
-        keeps one pace on both); a faster one sweeps as in
-        :meth:`entering`. With ``across`` (a direction, rows and cols), only the boxes that move across it (at more
-        than 45 degrees to it either way); with ``near`` (a cell and a radius in cells), only those that may come
-        within the radius of the cell (:meth:`may_reach`): the cells it leaves out all lie beyond it."""
+        keeps one pace on both); a faster one sweeps as in :meth:`entering`; one seen once, whose way is not known
+        yet, a cell either way at the next tick along each axis its edge's shape says it moved along (a box turning
+        back at the end of its run shows its far face, which no track's velocity expects). With ``across`` (a
+        direction, rows and cols), only the boxes that move across it (at more than 45 degrees to it either way; not
+        those seen once, whose one tick ahead the next cell's test covers); with ``near`` (a cell and a radius in
+        cells), only those that may come within the radius of the cell (:func:`_may_reach`): the cells it leaves out
+        all lie beyond it."""
         moves = [(track.front, *self._moves(track, tick - track.tick, ahead))
-                 for track in self._moving(tick, ahead, near) if across is None or _crosses(track.velocity, across)]
+                 for track in self._moving(tick, ahead, near, seen_once=True)
+                 if across is None or track.velocity is not None and _crosses(track.velocity, across)]
         if not moves:
             return {}
         cells = np.vstack([_shifted(edge, offsets) for edge, offsets, _ in moves])
@@ -213,11 +219,13 @@ class MotionPredictor:
         ticks after ``tick`` (:func:`_may_reach`)."""
         return bool(self._moving(tick, ahead, (cell, radius)))
 
-    def _moving(self, tick: int, ahead: int = 0, near: tuple[tuple[int, int], float] | None = None) -> list[Track]:
-        """The tracks with a velocity that are still taken to be moving at ``tick``; with ``near`` (a cell and a
-        radius), those that may come within the radius of the cell by ``tick + ahead`` (:func:`_may_reach`)."""
+    def _moving(self, tick: int, ahead: int = 0, near: tuple[tuple[int, int], float] | None = None,
+                seen_once: bool = False) -> list[Track]:
+        """The tracks with a velocity (and with ``seen_once``, those seen once, which have none yet) that are still
+        taken to be moving at ``tick``; with ``near`` (a cell and a radius), those that may come within the radius
+        of the cell by ``tick + ahead`` (:func:`_may_reach`)."""
         return [track for track in self.tracks
-                if track.velocity is not None and tick <= track.moving_until
+                if (seen_once or track.velocity is not None) and tick <= track.moving_until
                 and (near is None or _may_reach(track, tick + ahead, *near))]
 
     def _inside(self, cells: np.ndarray) -> np.ndarray:
@@ -230,7 +238,12 @@ class MotionPredictor:
         its last edge was seen, and the tick (1 = the next) of each. A slow box's moves are counted along each axis
         from the last edge that moved it along that axis (:func:`_steps_by_count`); one seen not to move since (a
         move overdue: its period is not a whole number of ticks, or it slowed) has made none of its moves yet: they
-        are counted from now on at the least."""
+        are counted from now on at the least. A box seen once, a cell either way along each axis its first edge's
+        shape says it moved along (:func:`_moved_along`), at the next tick."""
+        if track.velocity is None:
+            ways = [(-1, 0, 1) if along else (0,) for along in track.origin[2]]
+            offsets = np.array([(r, c) for r in ways[0] for c in ways[1] if r or c], np.int64).reshape(-1, 2)
+            return offsets, np.ones(len(offsets), np.int64)
         if track.speed > 1.0:
             elapsed = waited + np.arange(1, ahead + 1)[:, None]
             offsets, segment = _swept_offsets(track.velocity * (elapsed - 1), track.velocity * elapsed)

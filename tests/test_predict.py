@@ -113,6 +113,35 @@ def test_a_box_that_turns_back_is_expected_back_at_its_speed():
     assert predictor.arrivals(8, 2) == {cell: 2 for cell in cells_of(column(8))}
 
 
+def test_a_box_that_turns_back_at_full_speed_may_step_either_way_from_its_far_face():
+    """A 3 x 3 box going right a cell a tick (edges at columns 10, 11, 12 at ticks 1-3) turns back at tick 4: column
+    9 becomes occupied, 3 cells from its last edge, beyond the reach of a track's next edge (2.5 cells at 2 cells a
+    tick): a box seen once. Its way is not known, so at the next tick it may step a cell either way along its
+    columns, into column 8 or 10 (which it covers); 6 ticks without an edge later it has stopped. Before, a box was
+    predicted only from its second edge: a robot at column 8 stood there as the box came back onto it
+    (passing-60-70) (hand-computed)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((1, 10), (2, 11), (3, 12), (4, 9)):
+        predictor.observe(tick, column(col))
+    seen_once = [track for track in predictor.tracks if track.velocity is None]
+    assert [cells_of(track.edge) for track in seen_once] == [cells_of(column(9))]
+    arrivals = predictor.arrivals(4, 3)
+    assert all(arrivals.get(cell) == 1 for cell in cells_of(column(8)) | cells_of(column(10)))
+    assert not cells_of(column(8)) & cells_of(predictor.entering(4, 3))  # node layers hold what a velocity says
+    for tick in range(5, 11):
+        predictor.observe(tick, np.zeros((0, 2)))
+    assert predictor.arrivals(10, 3) == {}
+
+
+@pytest.mark.parametrize("cells", [[(5, 5)], [(r, c) for r in range(5, 8) for c in range(3, 6)]])
+def test_a_cell_or_a_block_seen_once_is_not_expected_to_move(cells):
+    """A single cell, or a whole block that appeared at once (a door closing), shows no axis it moved along: nothing
+    is expected of it."""
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(1, np.array(cells))
+    assert predictor.arrivals(1, 3) == {}
+
+
 def test_the_velocity_is_the_mean_over_the_last_edges():
     """Edges 3, 3 and 4 ticks apart (0.3 cells per tick): the velocity is 3 cells over 10 ticks, not the last
     interval's 1/4."""
