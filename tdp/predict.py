@@ -34,7 +34,8 @@ _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0,
 #: axis takes come from its last moves along it (Track.periods).
 HISTORY = 4
 #: The most cells an edge may lie from where a track's velocity expects it for the pair to be taken before those that
-#: do not fit (:meth:`MotionPredictor._assign`): a box's place rounds to whole cells either way, and its edges by a cell.
+#: do not fit (:meth:`MotionPredictor._assign`): a box's place rounds to whole cells either way, and its edges by a
+#: cell.
 FIT = 1.0
 
 
@@ -164,8 +165,11 @@ class MotionPredictor:
         shift from the track's last (:func:`_reading`): every pair within
         the reach of ``max_speed`` and of a similar size (half the smallest to twice the largest of the track's last
         edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), taken first those within
-        ``FIT`` of where the track's velocity expects its edge (:func:`_reading`), the best fit first, then the rest
-        nearest first, each edge and each track at most once. Taken edge by edge, nearest first, an edge read first
+        ``FIT`` of where the track's velocity expects its edge (:func:`_reading`), the best fit first, then those
+        where the box may have turned back (:func:`_turned_back`: its far face, up to twice the face's length
+        further than a track's reach), then the rest nearest first, each edge and each track at most once. Without
+        the second rank a box that turned back at full speed lay beyond its track's reach, and its far face took a
+        box's track in the next lane. Taken edge by edge, nearest first, an edge read first
         could take another box's track, whose own edge, a velocity's move on, then started a track of its own."""
         pairs = []
         for k, (edge, bound) in enumerate(zip(edges, bounds)):
@@ -174,9 +178,10 @@ class MotionPredictor:
                 if elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
                     continue
                 distance = float(np.abs(edge_shift(track.bounds, bound)).max())
-                if 0 < distance <= self.max_speed * elapsed + 0.5:
+                turned = _turned_back(track, edge, bound)
+                if 0 < distance <= self.max_speed * elapsed + 0.5 + (2 * len(edge) if turned else 0):
                     shift, miss = _reading(track, edge, bound, tick)
-                    pairs.append(((0, miss) if miss <= FIT else (1, distance), k, i, shift))
+                    pairs.append(((0, miss) if miss <= FIT else (1 if turned else 2, distance), k, i, shift))
         continues: dict[int, tuple[int, np.ndarray]] = {}
         taken: set[int] = set()
         for _, k, i, shift in sorted(pairs, key=lambda pair: pair[:3]):
@@ -406,6 +411,18 @@ def _moved_along(edge: np.ndarray, bounds: tuple[int, int, int, int]) -> tuple[b
     if height == 1 or width == 1:
         return height == 1 < width, width == 1 < height
     return (len(edge) < height * width,) * 2
+
+
+def _turned_back(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int]) -> bool:
+    """Whether ``edge`` (its cells within ``bounds``) may be the far face of ``track``'s box, turned back: the track
+    moves along one axis alone, and the edge has as many cells as its last edge, spans the same rows (cols) across
+    that axis and lies behind it along the axis."""
+    if track.velocity is None or len(edge) != len(track.edge) or np.count_nonzero(track.velocity) != 1:
+        return False
+    along = int(np.flatnonzero(track.velocity)[0])
+    across = 1 - along
+    return (bounds[across] == track.bounds[across] and bounds[across + 2] == track.bounds[across + 2]
+            and (bounds[along] - track.bounds[along]) * track.velocity[along] < 0)
 
 
 def _lean(edge: np.ndarray) -> np.ndarray:

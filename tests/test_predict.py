@@ -133,6 +133,22 @@ def test_a_box_that_turns_back_at_full_speed_may_step_either_way_from_its_far_fa
     assert predictor.arrivals(10, 3) == {}
 
 
+def test_a_box_that_turns_back_beside_another_keeps_its_track_and_leaves_the_other_its_own():
+    """Box A (rows 14-15) goes right half a cell a tick (edges at columns 18, 19 at ticks 1, 3); box B (rows 16-18, the
+    next lane) a cell a tick (columns 22, 23, 24 at ticks 1-3), and turns back at tick 4: its far face, column 21,
+    lies 3 cells behind its last edge, beyond a track's reach, but 2 from A's. Taken nearest, it took A's track
+    (read as a box turning down and across) and A moved on unseen (passing-60-90, -219); as B's face turned back it
+    takes B's track, and A keeps its own (hand-computed)."""
+    predictor = MotionPredictor((40, 40))
+    a, b = range(14, 16), range(16, 19)
+    for tick, edges in ((1, [column(18, a), column(22, b)]), (2, [column(23, b)]), (3, [column(19, a), column(24, b)]),
+                        (4, [column(21, b)])):
+        predictor.observe(tick, np.vstack(edges))
+    moving = {frozenset(cells_of(track.edge)): tuple(track.velocity) for track in predictor.tracks
+              if track.velocity is not None}
+    assert moving == {frozenset(cells_of(column(21, b))): (0.0, -1.0), frozenset(cells_of(column(19, a))): (0.0, 0.5)}
+
+
 @pytest.mark.parametrize("cells", [[(5, 5)], [(r, c) for r in range(5, 8) for c in range(3, 6)]])
 def test_a_cell_or_a_block_seen_once_is_not_expected_to_move(cells):
     """A single cell, or a whole block that appeared at once (a door closing), shows no axis it moved along: nothing
