@@ -113,16 +113,14 @@ def test_a_box_that_turns_back_is_expected_back_at_its_speed():
     assert predictor.arrivals(8, 2) == {cell: 2 for cell in cells_of(column(8))}
 
 
-def test_a_box_that_turns_back_at_full_speed_may_step_either_way_from_its_far_face():
-    """A 3 x 3 box going right a cell a tick (edges at columns 10, 11, 12 at ticks 1-3) turns back at tick 4: column
-    9 becomes occupied, 3 cells from its last edge, beyond the reach of a track's next edge (2.5 cells at 2 cells a
-    tick): a box seen once. Its way is not known, so at the next tick it may step a cell either way along its
-    columns, into column 8 or 10 (which it covers); 6 ticks without an edge later it has stopped. Before, a box was
-    predicted only from its second edge: a robot at column 8 stood there as the box came back onto it
-    (passing-60-70) (hand-computed)."""
+def test_a_box_seen_once_may_step_a_cell_either_way_along_the_axis_its_edge_shows():
+    """A 3 x 3 box standing at columns 10-12 (rows 4-6, never seen to move) starts to move left at tick 4: column 9
+    becomes occupied, an edge no track continues: a box seen once. Its way is not known, so at the next tick it may
+    step a cell either way along its columns, into column 8 or 10 (which it covers); 6 ticks without an edge later it
+    has stopped. Before, a box was predicted only from its second edge: a box turning back at full speed (whose far
+    face no track reached then) drove onto a robot at column 8 beside it (passing-60-70) (hand-computed)."""
     predictor = MotionPredictor((20, 30))
-    for tick, col in ((1, 10), (2, 11), (3, 12), (4, 9)):
-        predictor.observe(tick, column(col))
+    predictor.observe(4, column(9))
     seen_once = [track for track in predictor.tracks if track.velocity is None]
     assert [cells_of(track.edge) for track in seen_once] == [cells_of(column(9))]
     arrivals = predictor.arrivals(4, 3)
@@ -131,6 +129,20 @@ def test_a_box_that_turns_back_at_full_speed_may_step_either_way_from_its_far_fa
     for tick in range(5, 11):
         predictor.observe(tick, np.zeros((0, 2)))
     assert predictor.arrivals(10, 3) == {}
+
+
+def test_a_box_that_turns_back_at_full_speed_keeps_its_track_and_is_expected_back_at_the_next_tick():
+    """A 3 x 3 box going right a cell a tick (edges at columns 10, 11, 12 at ticks 1-3) turns back at tick 4: column
+    9 becomes occupied, its far face, 3 cells behind its last edge and beyond a track's reach (2.5 cells at 2 cells a
+    tick). Read as the box turned back, it keeps its track at a cell a tick leftwards and is expected in column 8 at
+    the next tick, 7 and 6 after (hand-computed); seen as a new box, it was predicted only from its second edge
+    (passing-60-70)."""
+    predictor = MotionPredictor((20, 30))
+    for tick, col in ((1, 10), (2, 11), (3, 12), (4, 9)):
+        predictor.observe(tick, column(col))
+    np.testing.assert_allclose(predictor.tracks[0].velocity, [0.0, -1.0])
+    expected = {cell: step for step, col in ((1, 8), (2, 7), (3, 6)) for cell in cells_of(column(col))}
+    assert predictor.arrivals(4, 3) == expected
 
 
 def test_a_box_that_turns_back_beside_another_keeps_its_track_and_leaves_the_other_its_own():
