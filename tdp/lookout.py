@@ -67,13 +67,16 @@ class BoxLookout:
     def clear_move(self, robot: Cell, wanted: Cell | None, route: Callable[[int], list[Cell]],
                    legal_moves: Callable[[], list[tuple[Cell, float]]],
                    values: Callable[[list[Cell]], np.ndarray]) -> Cell | None:
-        """The move to make given the cells the tracked boxes are predicted to enter: ``wanted`` if the robot meets
-        no box on its next ``meet_ticks`` moves (:meth:`_meets_a_box`; ``route(k)``: the robot's next k cells);
-        else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of the
+        """The move to make given the cells the tracked boxes are predicted to enter (and at the next tick those right
+        behind a moving box, which it enters if it turns back: :meth:`MotionPredictor.behind`): ``wanted`` if the
+        robot meets no box on its next ``meet_ticks`` moves (:meth:`_meets_a_box`; ``route(k)``: the robot's next k
+        cells); else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of the
         ``legal_moves()`` (cell, length; asked for only then) that no box enters at the next tick - one that none
         enters within ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus
         the move's length among them; ``wanted`` when every move is entered at the next tick."""
         arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks, near=(robot, REACH))
+        behind = self.predictor.behind(self.ticks, self.engine.occupied)
+        arrivals.update((cell, 1) for cell in map(tuple, behind.tolist()))  # a box may turn back into them
         if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
             return wanted
         if arrivals.get(robot, math.inf) > 1:

@@ -491,6 +491,41 @@ def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(
     assert 19 <= min(rows) and max(rows) <= 21 and record["length"] < 56.0
 
 
+@pytest.mark.parametrize("planner", ["exact", "accelerating"])
+@pytest.mark.parametrize("end_col", [10, 11, 12])
+@pytest.mark.parametrize("speed", [0.5, 1.0])
+def test_a_robot_crossing_a_lane_does_not_step_in_right_behind_a_box_that_may_turn_back(speed, end_col, planner):
+    """Open ground, the robot going down column 10 across a lane where a 3 x 3 box (rows 8-10) shuttles between
+    columns 0 and ``end_col`` + 2. With the box turning back at columns 11-13 at half a cell a tick, the robot
+    stepped into the lane right behind it (column 10) and was driven over as it turned (6 hit ticks): the box was
+    expected only ahead of it. With avoid_boxes no box may be on the robot, whatever the lane's end and speed."""
+    box = tdp.Obstacle((8, 0, 11, 3), waypoints=((8, end_col), (8, 0)) * 6, speed=speed)
+    scenario = tdp.Scenario(tdp.GridMap(np.zeros((20, 24), bool)), (1, 10), (18, 10), obstacles=[box], max_ticks=200)
+    config = tdp.NavigatorConfig(planner=planner, avoid_boxes=True, **({} if planner == "exact" else
+                                                                       {"updates_per_move": 1}))
+    record, _ = run_navigator(scenario, config)
+    assert record["reached"] and record["hits"] == 0
+
+
+def test_a_moving_box_may_turn_back_into_the_cell_behind_it():
+    """A 3 x 3 box going right (edges at columns 10, 11, 12 at ticks 1-3) covers columns 10-12 of rows 4-6: if it
+    turns back, it enters column 9 at the next tick, the first free cell behind its front, walked back through the
+    box (hand-computed). Two cells past it lies a wall, which is not walked through. A box that stopped (7 ticks
+    without an edge) turns back into nothing."""
+    predictor = MotionPredictor((20, 30))
+    occupied = np.zeros((20, 30), bool)
+    occupied[4:7, 10:13] = occupied[:, 5:8] = True
+    for tick, col in ((1, 10), (2, 11), (3, 12)):
+        predictor.observe(tick, column(col))
+    assert cells_of(predictor.behind(3, occupied)) == cells_of(column(9))
+    occupied[4:7, 8:10] = True  # the box 5 cells deep, against the wall
+    assert cells_of(predictor.behind(3, occupied)) == set()
+    for tick in range(4, 11):
+        predictor.observe(tick, np.zeros((0, 2)))
+    occupied[4:7, 8:10] = False
+    assert predictor.behind(10, occupied).size == 0
+
+
 def test_prediction_turns_the_robot_earlier_when_a_box_moves_into_its_passage():
     scenario = tdp.scenarios.get("moving-blockage")
     route = unblocked_route(scenario)
