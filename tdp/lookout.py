@@ -75,7 +75,7 @@ class BoxLookout:
         enters within ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus
         the move's length among them; ``wanted`` when every move is entered at the next tick."""
         arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks, near=(robot, REACH))
-        behind = self.predictor.behind(self.ticks, self.engine.occupied)
+        behind = self.predictor.behind(self.ticks, self.engine.occupied, near=(robot, REACH))
         arrivals.update((cell, 1) for cell in map(tuple, behind.tolist()))  # a box may turn back into them
         if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
             return wanted

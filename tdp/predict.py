@@ -219,28 +219,37 @@ class MotionPredictor:
         rows, cols = np.divmod(first, self.shape[1])
         return dict(zip(zip(rows.tolist(), cols.tolist()), steps[by_step][index].tolist()))
 
-    def behind(self, tick: int, occupied: np.ndarray) -> np.ndarray:
+    def behind(self, tick: int, occupied: np.ndarray, near: tuple[tuple[int, int], float] | None = None
+               ) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the boxes moving at ``tick`` would enter at the next tick if they
         turned back: along each axis a box moves on, the first cell free in ``occupied`` ((H, W) bool, the map now)
         behind its front (:attr:`Track.front`), walked back through the box - at most twice its largest edge or face
-        deep, so a box against a wall is not walked through it. The constant-velocity model learns that a box turned
-        back from its next edge: a robot that stepped in right behind one was driven over as it turned
-        (passing-60-423, -469)."""
+        deep. With ``near`` (a cell and a radius in cells), only those of boxes that may lie within the radius of
+        the cell. The constant-velocity model learns that a box turned back from its next edge: a robot that stepped
+        in right behind one was driven over as it turned (passing-60-423, -469)."""
         found = []
         for track in self._moving(tick):
+            depth = 2 * track.sizes[1]
+            if near is not None and not _may_reach(track, tick, near[0], near[1] + depth + track.sizes[1]):
+                continue  # its faces lie within a box's side of its edge, the cells behind within depth of those
+            front = track.front[occupied[track.front[:, 0], track.front[:, 1]]]  # where the box still is
             for axis in np.flatnonzero(track.velocity):
-                step = np.zeros(2, np.int64)
-                step[axis] = -np.sign(track.velocity[axis])
-                cells = track.front[occupied[track.front[:, 0], track.front[:, 1]]]  # where the box still is
-                for _ in range(2 * track.sizes[1]):
-                    cells = cells + step
-                    cells = cells[self._inside(cells)]
-                    free = ~occupied[cells[:, 0], cells[:, 1]]
-                    found.append(cells[free])
-                    cells = cells[~free]
+                found.append(self._first_free(front, axis, -int(np.sign(track.velocity[axis])), depth, occupied))
         if not found:
             return np.zeros((0, 2), np.int64)
         return np.unique(np.vstack(found), axis=0)
+
+    def _first_free(self, cells: np.ndarray, axis: int, way: int, depth: int, occupied: np.ndarray) -> np.ndarray:
+        """For each of ``cells`` ((n, 2)), the first cell free in ``occupied`` within ``depth`` steps of one cell
+        along ``axis`` the ``way`` given (1 or -1), where there is one before the map's edge (m <= n rows)."""
+        line = np.repeat(cells[:, None, :], depth, axis=1)
+        line[:, :, axis] += way * np.arange(1, depth + 1)
+        inside = (line >= 0).all(axis=2) & (line[:, :, 0] < self.shape[0]) & (line[:, :, 1] < self.shape[1])
+        clipped = np.minimum(np.maximum(line, 0), np.array(self.shape) - 1)
+        free = inside & ~occupied[clipped[:, :, 0], clipped[:, :, 1]]
+        first = np.argmax(free | ~inside, axis=1)  # the walk ends at a free cell or at the map's edge
+        rows = np.arange(len(cells))
+        return line[rows, first][free[rows, first]]
 
     def may_reach(self, tick: int, ahead: int, cell: tuple[int, int], radius: float) -> bool:
         """Whether a tracked box may come within ``radius`` cells (in rows and in cols) of ``cell`` in the ``ahead``
