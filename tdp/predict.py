@@ -224,30 +224,49 @@ class MotionPredictor:
         """Cells ((n, 2), inside the map) that the boxes moving at ``tick`` would enter at the next tick if they
         turned back: along each axis a box moves on, the first cell free in ``occupied`` ((H, W) bool, the map now)
         behind its front (:attr:`Track.front`), walked back through the box - at most twice its largest edge or face
-        deep. With ``near`` (a cell and a radius in cells), only those of boxes that may lie within the radius of
-        the cell. The constant-velocity model learns that a box turned back from its next edge: a robot that stepped
-        in right behind one was driven over as it turned (passing-60-423, -469)."""
-        found = []
+        deep. With ``near`` (a cell and a radius in cells), only those within the radius of the cell (in rows and in
+        cols), and only the walks that pass there are made. The constant-velocity model learns that a box turned
+        back from its next edge: a robot that stepped in right behind one was driven over as it turned
+        (passing-60-423, -469)."""
+        fronts, ways, depths = [], [], []
         for track in self._moving(tick):
             depth = 2 * track.sizes[1]
             if near is not None and not _may_reach(track, tick, near[0], near[1] + depth + track.sizes[1]):
                 continue  # its faces lie within a box's side of its edge, the cells behind within depth of those
-            front = track.front[occupied[track.front[:, 0], track.front[:, 1]]]  # where the box still is
             for axis in np.flatnonzero(track.velocity):
-                found.append(self._first_free(front, axis, -int(np.sign(track.velocity[axis])), depth, occupied))
-        if not found:
+                way = [0, 0]
+                way[axis] = -1 if track.velocity[axis] > 0 else 1  # back along the axis
+                fronts.append(track.front)
+                ways.append(way)
+                depths.append(depth)
+        if not fronts:
             return np.zeros((0, 2), np.int64)
-        return np.unique(np.vstack(found), axis=0)
+        counts = [len(front) for front in fronts]
+        cells = np.vstack(fronts)
+        ways, depths = np.repeat(np.array(ways, np.int64), counts, axis=0), np.repeat(depths, counts)
+        walked = occupied[cells[:, 0], cells[:, 1]]  # where the box still is
+        if near is not None:
+            walked &= _within(cells + ways, cells + ways * depths[:, None], *near)
+        found = self._first_free(cells[walked], ways[walked], depths[walked], occupied)
+        if near is not None:
+            found = found[_within(found, found, *near)]
+        flat = np.unique(found[:, 0] * self.shape[1] + found[:, 1])
+        return np.column_stack(np.divmod(flat, self.shape[1]))
 
-    def _first_free(self, cells: np.ndarray, axis: int, way: int, depth: int, occupied: np.ndarray) -> np.ndarray:
-        """For each of ``cells`` ((n, 2)), the first cell free in ``occupied`` within ``depth`` steps of one cell
-        along ``axis`` the ``way`` given (1 or -1), where there is one before the map's edge (m <= n rows)."""
-        line = np.repeat(cells[:, None, :], depth, axis=1)
-        line[:, :, axis] += way * np.arange(1, depth + 1)
-        inside = (line >= 0).all(axis=2) & (line[:, :, 0] < self.shape[0]) & (line[:, :, 1] < self.shape[1])
+    def _first_free(self, cells: np.ndarray, ways: np.ndarray, depths: np.ndarray, occupied: np.ndarray
+                    ) -> np.ndarray:
+        """For each of ``cells`` ((n, 2)), the first cell free in ``occupied`` within its ``depths`` steps of one
+        cell the way of its row of ``ways`` ((n, 2), a unit step along one axis), where there is one before the
+        map's edge (m <= n rows): every cell's walk in one set of array operations, as deep as the deepest."""
+        if not len(cells):
+            return cells
+        steps = np.arange(1, int(depths.max()) + 1)
+        line = cells[:, None, :] + ways[:, None, :] * steps[None, :, None]
+        inside = ((line >= 0).all(axis=2) & (line[:, :, 0] < self.shape[0]) & (line[:, :, 1] < self.shape[1])
+                  & (steps[None, :] <= depths[:, None]))
         clipped = np.minimum(np.maximum(line, 0), np.array(self.shape) - 1)
         free = inside & ~occupied[clipped[:, :, 0], clipped[:, :, 1]]
-        first = np.argmax(free | ~inside, axis=1)  # the walk ends at a free cell or at the map's edge
+        first = np.argmax(free | ~inside, axis=1)  # the walk ends at a free cell, its depth or the map's edge
         rows = np.arange(len(cells))
         return line[rows, first][free[rows, first]]
 
@@ -335,17 +354,17 @@ def _steps_by_count(periods: tuple[float, float] | None, waited: int, ahead: int
         return np.zeros(1, np.int64), np.full(1, ahead, np.int64)
     fewest, most = periods
     steps = np.arange(1, ahead + 1)
-    made_most = [min(_most_moves(waited + step, fewest), 1 + _most_moves(step - 1, fewest)) for step in steps]
+    made_most = np.minimum(_most_moves(waited + steps, fewest), 1 + _most_moves(steps - 1, fewest))
     counts = np.arange(made_most[-1] + 1)
     first = np.where(counts > 0, np.searchsorted(made_most, counts) + 1, 0)
     last = np.searchsorted(np.floor(steps / most), counts, side="right")
     return first.astype(np.int64), last.astype(np.int64)
 
 
-def _most_moves(ticks: int, period: float) -> int:
-    """The most one-cell moves a box that takes at least ``period`` ticks a move makes in the ``ticks`` ticks after
-    one: its c-th move is seen floor(c period) ticks after it at the earliest."""
-    return math.ceil((ticks + 1) / period) - 1
+def _most_moves(ticks: np.ndarray, period: float) -> np.ndarray:
+    """The most one-cell moves a box that takes at least ``period`` ticks a move makes in each of ``ticks`` (ints)
+    ticks after one: its c-th move is seen floor(c period) ticks after it at the earliest."""
+    return np.ceil((ticks + 1) / period).astype(np.int64) - 1
 
 
 def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -> bool:
@@ -355,6 +374,13 @@ def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -
     reach = max(track.speed, 1.0) * (until - track.tick) + 1.0
     r0, c0, r1, c1 = track.bounds  # the distance to the edge's bounds is at most the distance to its nearest cell
     return max(r0 - cell[0], cell[0] - r1, c0 - cell[1], cell[1] - c1, 0) <= radius + reach
+
+
+def _within(ends: np.ndarray, others: np.ndarray, cell: tuple[int, int], radius: float) -> np.ndarray:
+    """Which of the axis-aligned segments from ``ends`` to ``others`` ((n, 2) cells each) pass within ``radius``
+    cells (in rows and in cols) of ``cell``: a bool per row."""
+    low, high = np.minimum(ends, others), np.maximum(ends, others)
+    return ((low <= np.add(cell, radius)) & (high >= np.subtract(cell, radius))).all(axis=1)
 
 
 def _shifted(edge: np.ndarray, offsets: np.ndarray) -> np.ndarray:

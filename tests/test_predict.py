@@ -511,7 +511,7 @@ def test_a_moving_box_may_turn_back_into_the_cell_behind_it():
     """A 3 x 3 box going right (edges at columns 10, 11, 12 at ticks 1-3) covers columns 10-12 of rows 4-6: if it
     turns back, it enters column 9 at the next tick, the first free cell behind its front, walked back through the
     box (hand-computed). Two cells past it lies a wall, which is not walked through. A box that stopped (7 ticks
-    without an edge) turns back into nothing. Near a cell, only the boxes that may lie near it count."""
+    without an edge) turns back into nothing. Near a cell, only the cells within the radius of it count."""
     predictor = MotionPredictor((20, 30))
     occupied = np.zeros((20, 30), bool)
     occupied[4:7, 10:13] = occupied[:, 5:8] = True
@@ -519,6 +519,7 @@ def test_a_moving_box_may_turn_back_into_the_cell_behind_it():
         predictor.observe(tick, column(col))
     assert cells_of(predictor.behind(3, occupied)) == cells_of(column(9))
     assert cells_of(predictor.behind(3, occupied, near=((5, 8), 1))) == cells_of(column(9))
+    assert cells_of(predictor.behind(3, occupied, near=((2, 9), 2))) == {(4, 9)}  # the cells within the radius
     assert predictor.behind(3, occupied, near=((5, 28), 2)).size == 0  # no box behind which it could turn back
     occupied[4:7, 8:10] = True  # the box 5 cells deep, against the wall
     assert cells_of(predictor.behind(3, occupied)) == set()
