@@ -332,10 +332,14 @@ def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: 
     cells per tick along it over its last edges, from the (tick, place along the axis) of the edge it started from,
     those of its ``moves`` along it since (the last HISTORY), and whether that start is known to have moved it along
     the axis; None where it does not move along it. With one move (or moves that cancel out), from 1 tick, with no
-    bound above; with none since the start (a turn), 1 / speed and a tick more."""
+    bound above, and so where the moves are faster than a cell a tick (more cells than ticks and one: an edge
+    misread, another box's cells taken for this one's - the bounds were then a most below the fewest, and no count of
+    moves fit any tick); with none since the start (a turn), 1 / speed and a tick more."""
     counted = (start,) + moves if start_moved and len(moves) < HISTORY else moves  # the start still in the history
     ticks = counted[-1][0] - counted[0][0] if counted else 0
     cells = sum(abs(after - before) for (_, before), (_, after) in zip(counted, counted[1:]))  # back and forth too
+    if cells > ticks + 1 + 1e-6:  # an edge misread: no pace known
+        return 1.0, math.inf
     if cells >= 1.0:
         return round(max(1.0, (ticks - 1) / cells), 9), round((ticks + 1) / cells, 9)  # whole periods stay whole
     if moves:  # the move before the one seen came at any time (the first reads of a track may have missed it)

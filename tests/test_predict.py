@@ -18,6 +18,10 @@ def column(col: int, rows=range(4, 7)) -> np.ndarray:
     return np.array([(r, col) for r in rows])
 
 
+def row(at: int, cols) -> np.ndarray:
+    return np.array([(at, c) for c in cols])
+
+
 def cells_of(array: np.ndarray) -> set:
     return set(map(tuple, array.tolist()))
 
@@ -441,6 +445,22 @@ def test_avoiding_boxes_leaves_the_exact_planner_on_the_oracles_way_where_no_box
     scenario = make_world("rooms", 100, 1)  # doors that close, no box that moves
     record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=True))
     assert record["reached"] and record["trajectory"] == oracle_run(scenario, tdp.NavigatorConfig(), 600)["trajectory"]
+
+
+def test_a_misread_move_faster_than_a_cell_a_tick_leaves_the_axis_pace_unknown_not_impossible():
+    """An L-shaped first edge (rows 20-22, cols 10-14: it moved the box along both axes), then a row 2 rows up and 4
+    cols left (read as one move of 4 cols in 2 ticks - another box's cells, say), then the row moving up a cell a
+    tick (rows 17, 16, 15). The cols' window said 4 cells in 2 ticks: a move every 0.75 ticks at most, less than the
+    fewest (1), so no tick allowed the cols to stay and nothing the box enters was expected (hand-computed: rows 14
+    and 13, cols 6-10, at the next tick and the one after). Faster than a cell a tick is a misread: the cols' pace is
+    unknown, and the box may keep to its cols."""
+    predictor = MotionPredictor((40, 40))
+    predictor.observe(1, np.vstack([row(20, range(10, 15)), [(21, 14), (22, 14)]]))
+    predictor.observe(2, np.zeros((0, 2)))
+    for tick, at, cols in ((3, 18, range(6, 11)), (4, 17, range(6, 11)), (5, 16, range(6, 11)), (6, 15, range(6, 11))):
+        predictor.observe(tick, row(at, cols))
+    arrivals = predictor.arrivals(6, 2)
+    assert all(arrivals.get((14, col), math.inf) <= 1 and arrivals.get((13, col), math.inf) <= 2 for col in range(6, 11))
 
 
 def test_a_cell_two_boxes_drive_into_arrives_at_the_earlier_of_their_ticks_whichever_box_is_tracked_first():
