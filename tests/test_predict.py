@@ -457,10 +457,11 @@ def test_a_misread_move_faster_than_a_cell_a_tick_leaves_the_axis_pace_unknown_n
     predictor = MotionPredictor((40, 40))
     predictor.observe(1, np.vstack([row(20, range(10, 15)), [(21, 14), (22, 14)]]))
     predictor.observe(2, np.zeros((0, 2)))
-    for tick, at, cols in ((3, 18, range(6, 11)), (4, 17, range(6, 11)), (5, 16, range(6, 11)), (6, 15, range(6, 11))):
-        predictor.observe(tick, row(at, cols))
+    for tick, at in ((3, 18), (4, 17), (5, 16), (6, 15)):
+        predictor.observe(tick, row(at, range(6, 11)))
     arrivals = predictor.arrivals(6, 2)
-    assert all(arrivals.get((14, col), math.inf) <= 1 and arrivals.get((13, col), math.inf) <= 2 for col in range(6, 11))
+    assert all(arrivals.get((14, col), math.inf) <= 1 and arrivals.get((13, col), math.inf) <= 2
+               for col in range(6, 11))
 
 
 def test_a_cell_two_boxes_drive_into_arrives_at_the_earlier_of_their_ticks_whichever_box_is_tracked_first():
