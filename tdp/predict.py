@@ -145,7 +145,9 @@ class MotionPredictor:
     def observe(self, tick: int, became_occupied: np.ndarray) -> None:
         """Take the cells ((n, 2) row, col) that became occupied at ``tick`` (ticks must not go back)."""
         previous = [track for track in self.tracks if tick <= track.moving_until]
-        edges = clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2))
+        expected = _expected_fronts(previous, tick)
+        edges = [piece for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2))
+                 for piece in _split_by_fronts(edge, expected)]
         bounds = [_bounds(edge) for edge in edges]
         continues = self._assign(edges, bounds, tick, previous)
         tracks = []
@@ -222,20 +224,20 @@ class MotionPredictor:
     def behind(self, tick: int, occupied: np.ndarray, near: tuple[tuple[int, int], float] | None = None
                ) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the boxes moving at ``tick`` would enter at the next tick if they
-        turned back: along each axis a box moves on, the first cell free in ``occupied`` ((H, W) bool, the map now)
-        behind its front (:attr:`Track.front`), walked back through the box - at most twice its largest edge or face
-        deep. With ``near`` (a cell and a radius in cells), only those within the radius of the cell (in rows and in
-        cols), and only the walks that pass there are made. The constant-velocity model learns that a box turned
-        back from its next edge: a robot that stepped in right behind one was driven over as it turned
-        (passing-60-423, -469)."""
+        turned back: along each axis a box moves on (and diagonally, where it moves on both: :func:`_ways_back`), the
+        first cell free in ``occupied`` ((H, W) bool, the map now) behind its front (:attr:`Track.front`), walked back
+        through the box - at most twice its largest edge or face deep. With ``near`` (a cell and a radius in cells),
+        only those within the radius of the cell (in rows and in cols), and only the walks that pass there are made.
+        The constant-velocity model learns that a box turned back from its next edge: a robot that stepped in right
+        behind one was driven over as it turned (passing-60-423, -469), and one diagonally behind a diagonal box's
+        corner (crossing-60-23 with its boxes at twice their speed)."""
         fronts, ways, depths = [], [], []
         for track in self._moving(tick):
             depth = 2 * track.sizes[1]
             if near is not None and not _may_reach(track, tick, near[0], near[1] + depth + track.sizes[1]):
                 continue  # its faces lie within a box's side of its edge, the cells behind within depth of those
-            for axis in np.flatnonzero(track.velocity):
-                way = [0, 0]
-                way[axis] = -1 if track.velocity[axis] > 0 else 1  # back along the axis
+            back = -np.sign(track.velocity).astype(np.int64)
+            for way in _ways_back(back):
                 fronts.append(track.front)
                 ways.append(way)
                 depths.append(depth)
@@ -380,6 +382,15 @@ def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -
     return max(r0 - cell[0], cell[0] - r1, c0 - cell[1], cell[1] - c1, 0) <= radius + reach
 
 
+def _ways_back(back: np.ndarray) -> list[tuple[int, int]]:
+    """The unit steps a box whose velocity's signs are ``-back`` (rows, cols) takes if it turns back: along each axis
+    it moves on, and diagonally where it moves on both (its corner then enters the cell behind it diagonally, which
+    neither axis's step reaches)."""
+    ways = [(int(back[0]), 0)] if back[0] else []
+    ways += [(0, int(back[1]))] if back[1] else []
+    return ways + ([(int(back[0]), int(back[1]))] if back.all() else [])
+
+
 def _within(ends: np.ndarray, others: np.ndarray, cell: tuple[int, int], radius: float) -> np.ndarray:
     """Which of the axis-aligned segments from ``ends`` to ``others`` ((n, 2) cells each) pass within ``radius``
     cells (in rows and in cols) of ``cell``: a bool per row."""
@@ -406,6 +417,33 @@ def _swept_offsets(now: np.ndarray, then: np.ndarray) -> tuple[np.ndarray, np.nd
     found = np.unique(np.column_stack([segment, corners.reshape(-1, 2).astype(np.int64)]), axis=0)
     found = found[found[:, 1:].any(axis=1)]
     return found[:, 1:], found[:, 0]
+
+
+def _expected_fronts(tracks: list[Track], tick: int) -> list[np.ndarray]:
+    """Where each track with a velocity expects its front ((n, 2) cells: :attr:`Track.front` moved on by the
+    velocity, rounded) at ``tick``; the tracks with none yet, or whose expected front another's overlaps (two tracks of
+    one box), are left out."""
+    fronts = [track.front + np.rint(track.velocity * (tick - track.tick)).astype(np.int64)
+              for track in tracks if track.velocity is not None]
+    flat = [set((front[:, 0] * (1 << 20) + front[:, 1]).tolist()) for front in fronts]
+    return [front for k, front in enumerate(fronts)
+            if not any(flat[k] & other for j, other in enumerate(flat) if j != k)]
+
+
+def _split_by_fronts(edge: np.ndarray, fronts: list[np.ndarray]) -> list[np.ndarray]:
+    """``edge`` ((n, 2) cells of one cluster) split between the tracks' expected ``fronts`` (:func:`_expected_fronts`)
+    within a cell of it, each cell to the nearest (in rows and cols), where two or more are: two boxes whose new edges
+    touch come as one cluster, which continued one track while the other coasted, its next move expected a tick late.
+    Otherwise ``[edge]``."""
+    near = []
+    for front in fronts:
+        distance = np.abs(edge[:, None, :] - front[None, :, :]).max(axis=2).min(axis=1)
+        if distance.min() <= 1:
+            near.append(distance)
+    if len(near) < 2:
+        return [edge]
+    nearest = np.argmin(np.stack(near), axis=0)
+    return [edge[nearest == k] for k in range(len(near)) if (nearest == k).any()]
 
 
 def clusters(cells: np.ndarray) -> list[np.ndarray]:

@@ -464,6 +464,20 @@ def test_a_misread_move_faster_than_a_cell_a_tick_leaves_the_axis_pace_unknown_n
                for col in range(6, 11))
 
 
+def test_two_boxes_whose_edges_touch_as_they_pass_keep_their_own_tracks():
+    """Box A (rows 10-12) going right and box B (rows 13-15) going left, a cell a tick each, in touching lanes: at
+    tick 6 both leading columns are at col 10, one cluster of 6 cells. It continued B's track alone, and A's, coasting,
+    expected col 11 at the second tick ahead, where A enters it at the first (hand-computed). Split between the
+    tracks' expected fronts, each box keeps its track: col 11 (rows 10-12) and col 9 (rows 13-15) at the next tick."""
+    predictor = MotionPredictor((30, 30))
+    for tick in range(1, 7):
+        predictor.observe(tick, np.vstack([column(4 + tick, range(10, 13)), column(16 - tick, range(13, 16))]))
+    arrivals = predictor.arrivals(6, 2)
+    assert [arrivals.get((r, 11)) for r in range(10, 13)] == [1, 1, 1]
+    assert [arrivals.get((r, 9)) for r in range(13, 16)] == [1, 1, 1]
+    assert len(predictor.tracks) == 2
+
+
 def test_a_cell_two_boxes_drive_into_arrives_at_the_earlier_of_their_ticks_whichever_box_is_tracked_first():
     """Two boxes closing on row 5's column 15 from either side: the one on the left at a cell a tick gets there at
     the fourth tick, the one on the right at two cells a tick at the third (hand-computed). The first box in the
@@ -510,6 +524,21 @@ def test_a_robot_yields_to_a_box_driving_across_its_way_instead_of_escorting_it(
     rows = [row for row, _ in record["trajectory"]]
     assert record["reached"] and record["collisions"] == 0 and record["hits"] == 0
     assert 19 <= min(rows) and max(rows) <= 21 and record["length"] < 56.0
+
+
+def test_a_diagonal_box_may_turn_back_into_the_cell_diagonally_behind_its_corner():
+    """A 3 x 3 box going down and to the right a cell a tick along both axes (rows and cols t..t + 2 at tick t): at
+    tick 3 it covers rows and cols 3-5, and turned back it enters row 2 (cols 2-4), col 2 (rows 2-4) and, by its
+    corner, the cell (2, 2) diagonally behind it, which neither axis's walk back reaches (hand-computed)."""
+    predictor = MotionPredictor((20, 20))
+    occupied = np.zeros((20, 20), bool)
+    for tick in (1, 2, 3):
+        box = np.zeros((20, 20), bool)
+        box[tick:tick + 3, tick:tick + 3] = True
+        predictor.observe(tick, np.argwhere(box & ~occupied))
+        occupied = box
+    assert (2, 2) in cells_of(predictor.behind(3, occupied))
+    assert cells_of(predictor.behind(3, occupied)) <= {(2, c) for c in range(2, 6)} | {(r, 2) for r in range(2, 6)}
 
 
 @pytest.mark.parametrize("planner", ["exact", "accelerating"])
