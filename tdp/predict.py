@@ -107,6 +107,11 @@ class Track:
         return np.vstack([self.edge] + faces) if faces else self.edge  # a cell twice is flagged once
 
     @cached_property
+    def front_bounds(self) -> tuple[int, int, int, int]:
+        """The least row and col of :attr:`front`'s cells, then the greatest."""
+        return _bounds(self.front)
+
+    @cached_property
     def sizes(self) -> tuple[int, int]:
         """The fewest and the most cells of the track's last edge and faces."""
         sizes = [len(self.edge)] + [len(face) for face in self.faces if face is not None]
@@ -147,7 +152,7 @@ class MotionPredictor:
         previous = [track for track in self.tracks if tick <= track.moving_until]
         expected = _expected_fronts(previous, tick)
         edges = [piece for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2))
-                 for piece in _split_by_fronts(edge, expected)]
+                 for piece in _split_by_fronts(edge, _bounds(edge), expected)]
         bounds = [_bounds(edge) for edge in edges]
         continues = self._assign(edges, bounds, tick, previous)
         tracks = []
@@ -419,31 +424,59 @@ def _swept_offsets(now: np.ndarray, then: np.ndarray) -> tuple[np.ndarray, np.nd
     return found[:, 1:], found[:, 0]
 
 
-def _expected_fronts(tracks: list[Track], tick: int) -> list[np.ndarray]:
-    """Where each track with a velocity expects its front ((n, 2) cells: :attr:`Track.front` moved on by the
-    velocity, rounded) at ``tick``; the tracks with none yet, or whose expected front another's overlaps (two tracks of
-    one box), are left out."""
-    fronts = [track.front + np.rint(track.velocity * (tick - track.tick)).astype(np.int64)
-              for track in tracks if track.velocity is not None]
-    flat = [set((front[:, 0] * (1 << 20) + front[:, 1]).tolist()) for front in fronts]
-    return [front for k, front in enumerate(fronts)
-            if not any(flat[k] & other for j, other in enumerate(flat) if j != k)]
+def _expected_fronts(tracks: list[Track], tick: int) -> list[tuple[tuple[int, int, int, int], Track, np.ndarray]]:
+    """Where each track with a velocity expects its front at ``tick`` (:attr:`Track.front` moved on by the velocity,
+    rounded): the front's bounds (least row and col, then greatest) moved on, the track and the move (rows, cols)."""
+    fronts = []
+    for track in tracks:
+        if track.velocity is not None:
+            shift = np.rint(track.velocity * (tick - track.tick)).astype(np.int64)
+            r0, c0, r1, c1 = track.front_bounds
+            dr, dc = int(shift[0]), int(shift[1])
+            fronts.append(((r0 + dr, c0 + dc, r1 + dr, c1 + dc), track, shift))
+    return fronts
 
 
-def _split_by_fronts(edge: np.ndarray, fronts: list[np.ndarray]) -> list[np.ndarray]:
-    """``edge`` ((n, 2) cells of one cluster) split between the tracks' expected ``fronts`` (:func:`_expected_fronts`)
-    within a cell of it, each cell to the nearest (in rows and cols), where two or more are: two boxes whose new edges
-    touch come as one cluster, which continued one track while the other coasted, its next move expected a tick late.
+def _split_by_fronts(edge: np.ndarray, bounds: tuple[int, int, int, int],
+                     fronts: list[tuple[tuple[int, int, int, int], Track, np.ndarray]]) -> list[np.ndarray]:
+    """``edge`` ((n, 2) cells of one cluster, within ``bounds``) split between the tracks' expected ``fronts``
+    (:func:`_expected_fronts`) within a cell of it, each cell to the nearest (in rows and cols), where two or more
+    are: two boxes whose new edges touch come as one cluster, which continued one track while the other coasted, its
+    next move expected a tick late. A front that shares a cell with another's (two tracks of one box) splits nothing.
     Otherwise ``[edge]``."""
-    near = []
-    for front in fronts:
-        distance = np.abs(edge[:, None, :] - front[None, :, :]).max(axis=2).min(axis=1)
-        if distance.min() <= 1:
-            near.append(distance)
+    near = [k for k, (around, _, _) in enumerate(fronts) if _gap(bounds, around) <= 1]
     if len(near) < 2:
         return [edge]
-    nearest = np.argmin(np.stack(near), axis=0)
+    distance = {k: np.abs(edge[:, None, :] - (fronts[k][1].front + fronts[k][2])[None]).max(axis=2).min(axis=1)
+                for k in near}
+    near = [k for k in near if distance[k].min() <= 1 and not _overlapped(k, fronts)]
+    if len(near) < 2:
+        return [edge]
+    nearest = np.argmin(np.stack([distance[k] for k in near]), axis=0)
     return [edge[nearest == k] for k in range(len(near)) if (nearest == k).any()]
+
+
+def _gap(a: tuple[int, int, int, int], b: tuple[int, int, int, int]) -> int:
+    """How many cells apart (in rows and in cols; 0 where they overlap) the rectangles of two bounds (least row and
+    col, then greatest) lie."""
+    return max(a[0] - b[2], b[0] - a[2], a[1] - b[3], b[1] - a[3], 0)
+
+
+def _overlapped(k: int, fronts: list[tuple[tuple[int, int, int, int], Track, np.ndarray]]) -> bool:
+    """Whether another track's expected front shares a cell with the ``k``-th's of ``fronts``."""
+    around, track, shift = fronts[k]
+    mine = None
+    for j, (other, other_track, other_shift) in enumerate(fronts):
+        if j != k and _gap(around, other) == 0:
+            mine = _flat_cells(track.front + shift) if mine is None else mine
+            if mine & _flat_cells(other_track.front + other_shift):
+                return True
+    return False
+
+
+def _flat_cells(cells: np.ndarray) -> set[int]:
+    """``cells`` ((n, 2), any sign) as a set of ints, one per cell."""
+    return set((cells[:, 0] * (1 << 20) + cells[:, 1]).tolist())
 
 
 def clusters(cells: np.ndarray) -> list[np.ndarray]:
