@@ -263,8 +263,9 @@ class MotionPredictor:
     def _first_free(self, cells: np.ndarray, ways: np.ndarray, depths: np.ndarray, occupied: np.ndarray
                     ) -> np.ndarray:
         """For each of ``cells`` ((n, 2)), the first cell free in ``occupied`` within its ``depths`` steps of one
-        cell the way of its row of ``ways`` ((n, 2), a unit step along one axis), where there is one before the
-        map's edge (m <= n rows): every cell's walk in one set of array operations, as deep as the deepest."""
+        cell the way of its row of ``ways`` ((n, 2), a unit step along an axis or diagonally), where there is one
+        before the map's edge (m <= n rows): every cell's walk in one set of array operations, as deep as the
+        deepest."""
         if not len(cells):
             return cells
         steps = np.arange(1, int(depths.max()) + 1)
@@ -397,8 +398,8 @@ def _ways_back(back: np.ndarray) -> list[tuple[int, int]]:
 
 
 def _within(ends: np.ndarray, others: np.ndarray, cell: tuple[int, int], radius: float) -> np.ndarray:
-    """Which of the axis-aligned segments from ``ends`` to ``others`` ((n, 2) cells each) pass within ``radius``
-    cells (in rows and in cols) of ``cell``: a bool per row."""
+    """Which of the rectangles spanned by ``ends`` and ``others`` ((n, 2) cells each; a walk's first and last cells)
+    come within ``radius`` cells (in rows and in cols) of ``cell``: a bool per row."""
     low, high = np.minimum(ends, others), np.maximum(ends, others)
     return ((low <= np.add(cell, radius)) & (high >= np.subtract(cell, radius))).all(axis=1)
 
@@ -424,7 +425,12 @@ def _swept_offsets(now: np.ndarray, then: np.ndarray) -> tuple[np.ndarray, np.nd
     return found[:, 1:], found[:, 0]
 
 
-def _expected_fronts(tracks: list[Track], tick: int) -> list[tuple[tuple[int, int, int, int], Track, np.ndarray]]:
+#: A track's expected front (:func:`_expected_fronts`): its bounds (least row and col, then greatest), the track and
+#: the move (rows, cols) from its last edge.
+_Front = tuple[tuple[int, int, int, int], Track, np.ndarray]
+
+
+def _expected_fronts(tracks: list[Track], tick: int) -> list[_Front]:
     """Where each track with a velocity expects its front at ``tick`` (:attr:`Track.front` moved on by the velocity,
     rounded): the front's bounds (least row and col, then greatest) moved on, the track and the move (rows, cols)."""
     fronts = []
@@ -437,8 +443,7 @@ def _expected_fronts(tracks: list[Track], tick: int) -> list[tuple[tuple[int, in
     return fronts
 
 
-def _split_by_fronts(edge: np.ndarray, bounds: tuple[int, int, int, int],
-                     fronts: list[tuple[tuple[int, int, int, int], Track, np.ndarray]]) -> list[np.ndarray]:
+def _split_by_fronts(edge: np.ndarray, bounds: tuple[int, int, int, int], fronts: list[_Front]) -> list[np.ndarray]:
     """``edge`` ((n, 2) cells of one cluster, within ``bounds``) split between the tracks' expected ``fronts``
     (:func:`_expected_fronts`) within a cell of it, each cell to the nearest (in rows and cols), where two or more
     are: two boxes whose new edges touch come as one cluster, which continued one track while the other coasted, its
@@ -462,7 +467,7 @@ def _gap(a: tuple[int, int, int, int], b: tuple[int, int, int, int]) -> int:
     return max(a[0] - b[2], b[0] - a[2], a[1] - b[3], b[1] - a[3], 0)
 
 
-def _overlapped(k: int, fronts: list[tuple[tuple[int, int, int, int], Track, np.ndarray]]) -> bool:
+def _overlapped(k: int, fronts: list[_Front]) -> bool:
     """Whether another track's expected front shares a cell with the ``k``-th's of ``fronts``."""
     around, track, shift = fronts[k]
     mine = None
