@@ -182,11 +182,14 @@ class MotionPredictor:
         for k, (edge, bound) in enumerate(zip(edges, bounds)):
             for i, track in enumerate(previous):
                 elapsed = tick - track.tick
+                reach = self.max_speed * elapsed + 0.5
                 if elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
+                    continue
+                if _gap(track.bounds, bound) > reach + 2 * len(edge):  # a shift is at least the gap: beyond reach
                     continue
                 distance = float(np.abs(edge_shift(track.bounds, bound)).max())
                 turned = _turned_back(track, edge, bound)
-                if 0 < distance <= self.max_speed * elapsed + 0.5 + (2 * len(edge) if turned else 0):
+                if 0 < distance <= reach + (2 * len(edge) if turned else 0):
                     shift, miss = _reading(track, edge, bound, tick)
                     pairs.append(((0, miss) if miss <= FIT else (1 if turned else 2, distance), k, i, shift))
         continues: dict[int, tuple[int, np.ndarray]] = {}
