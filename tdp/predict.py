@@ -387,8 +387,8 @@ def _may_reach(track: Track, until: int, cell: tuple[int, int], radius: float) -
     ``until``: its edge moves at most max(speed, 1) cells a tick in each since it was seen (a slow box a cell at a
     time), and a cell more where a world rounds its place up."""
     reach = max(track.speed, 1.0) * (until - track.tick) + 1.0
-    r0, c0, r1, c1 = track.bounds  # the distance to the edge's bounds is at most the distance to its nearest cell
-    return max(r0 - cell[0], cell[0] - r1, c0 - cell[1], cell[1] - c1, 0) <= radius + reach
+    # the distance to the edge's bounds is at most the distance to its nearest cell
+    return _gap(track.bounds, (cell[0], cell[1], cell[0], cell[1])) <= radius + reach
 
 
 def _ways_back(back: np.ndarray) -> list[tuple[int, int]]:
