@@ -151,9 +151,12 @@ class MotionPredictor:
         """Take the cells ((n, 2) row, col) that became occupied at ``tick`` (ticks must not go back)."""
         previous = [track for track in self.tracks if tick <= track.moving_until]
         expected = _expected_fronts(previous, tick)
-        edges = [piece for edge in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2))
-                 for piece in _split_by_fronts(edge, _bounds(edge), expected)]
-        bounds = [_bounds(edge) for edge in edges]
+        edges, bounds = [], []
+        for cluster in clusters(np.asarray(became_occupied, np.int64).reshape(-1, 2)):
+            around = _bounds(cluster)
+            pieces = _split_by_fronts(cluster, around, expected)
+            edges += pieces
+            bounds += [around] if len(pieces) == 1 else [_bounds(piece) for piece in pieces]  # one piece: all of it
         continues = self._assign(edges, bounds, tick, previous)
         tracks = []
         for k, edge in enumerate(edges):
