@@ -236,8 +236,8 @@ class MotionPredictor:
                ) -> np.ndarray:
         """Cells ((n, 2), inside the map) that the boxes moving at ``tick`` would enter at the next tick if they
         turned back: along each axis a box moves on (and diagonally, where it moves on both: :func:`_ways_back`), the
-        first cell free in ``occupied`` ((H, W) bool, the map now) behind its front (:attr:`Track.front`), walked back
-        through the box - at most twice its largest edge or face deep. With ``near`` (a cell and a radius in cells),
+        first cell free in ``occupied`` ((H, W) bool, the map now) behind its front (:attr:`Track.front`; its cells
+        inside the map), walked back through the box - at most twice its largest edge or face deep. With ``near`` (a cell and a radius in cells),
         only those within the radius of the cell (in rows and in cols), and only the walks that pass there are made.
         The constant-velocity model learns that a box turned back from its next edge: a robot that stepped in right
         behind one was driven over as it turned (passing-60-423, -469), and one diagonally behind a diagonal box's
@@ -257,7 +257,8 @@ class MotionPredictor:
         counts = [len(front) for front in fronts]
         cells = np.vstack(fronts)
         ways, depths = np.repeat(np.array(ways, np.int64), counts, axis=0), np.repeat(depths, counts)
-        walked = occupied[cells[:, 0], cells[:, 1]]  # where the box still is
+        walked = self._inside(cells)  # a face moved on with its box may lie past the map's edge (a misread cluster)
+        walked[walked] = occupied[cells[walked, 0], cells[walked, 1]]  # where the box still is
         if near is not None:
             walked &= _within(cells + ways, cells + ways * depths[:, None], *near)
         found = self._first_free(cells[walked], ways[walked], depths[walked], occupied)

@@ -557,6 +557,29 @@ def test_a_robot_crossing_a_lane_does_not_step_in_right_behind_a_box_that_may_tu
     assert record["reached"] and record["hits"] == 0
 
 
+def test_a_face_carried_past_the_maps_edge_is_walked_back_from_inside_the_map_alone():
+    """Two boxes whose edges touch at tick 21 read as one L-shaped cluster; the track that takes it moves on 4 cells
+    a tick to the right along row 6-9 (a box 4 times the families' speed, tracked with ``max_speed`` 4), and carries
+    the L's row face with it: at tick 23 that face reaches column 60 of a 60-column map. ``behind`` indexed the map
+    with it (IndexError in a world at 6x the families' speed; a face at a negative row would have read the map's last
+    row instead); the cells walked back from now all lie inside the map."""
+    edges = {21: [(5, 49), (5, 50), (5, 51), (6, 50), (6, 51), (6, 52), (7, 50), (7, 51), (7, 52), (8, 50), (8, 51),
+                  (8, 52), (9, 52)],
+             22: [(r, c) for r in range(1, 4) for c in range(49, 52)] + [(r, c) for r in range(6, 10)
+                                                                          for c in range(53, 57)],
+             23: [(r, c) for r in range(4, 6) for c in range(49, 52)] + [(r, c) for r in range(6, 10)
+                                                                          for c in range(57, 59)]}
+    predictor = MotionPredictor((60, 60), max_speed=4.0)
+    for tick, cells in edges.items():
+        predictor.observe(tick, np.array(cells))
+    assert max(int(track.front[:, 1].max()) for track in predictor.tracks) == 60  # the face past the edge
+    occupied = np.zeros((60, 60), bool)
+    occupied[6:10, 53:59] = occupied[4:6, 49:52] = True
+    behind = predictor.behind(23, occupied)
+    assert len(behind) and ((behind >= 0) & (behind < 60)).all()
+    assert not occupied[behind[:, 0], behind[:, 1]].any()
+
+
 def test_a_moving_box_may_turn_back_into_the_cell_behind_it():
     """A 3 x 3 box going right (edges at columns 10, 11, 12 at ticks 1-3) covers columns 10-12 of rows 4-6: if it
     turns back, it enters column 9 at the next tick, the first free cell behind its front, walked back through the
