@@ -576,8 +576,8 @@ def _fast(track: Track, edge: np.ndarray, bounds: tuple[int, int, int, int], shi
 
 
 def _span(bounds: tuple[int, int, int, int]) -> tuple[int, int]:
-    """The rows and cols that ``bounds`` (least row and col, then greatest) span, less one."""
-    return bounds[2] - bounds[0], bounds[3] - bounds[1]
+    """How many rows and cols ``bounds`` (least row and col, then greatest) span."""
+    return bounds[2] - bounds[0] + 1, bounds[3] - bounds[1] + 1
 
 
 def _moved_along(edge: np.ndarray, bounds: tuple[int, int, int, int]) -> tuple[bool, bool]:
@@ -585,8 +585,7 @@ def _moved_along(edge: np.ndarray, bounds: tuple[int, int, int, int]) -> tuple[b
     its shape: a row of cells (one row, more than one col) a move along rows (a move along cols alone shows a column
     as tall as the box), a column one along cols, an L (part of a rectangle of more than one row and col) both; a
     single cell or a whole rectangle (a box that appeared), neither surely."""
-    r0, c0, r1, c1 = bounds
-    height, width = r1 - r0 + 1, c1 - c0 + 1
+    height, width = _span(bounds)
     if height == 1 or width == 1:
         return height == 1 < width, width == 1 < height
     return (len(edge) < height * width,) * 2

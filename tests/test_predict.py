@@ -562,17 +562,17 @@ def test_a_box_three_cells_a_tick_is_tracked_and_its_next_cells_predicted():
     box): one track at 3 cells a tick, the cells it sweeps at the next tick (cols 9-11 of rows 10-12) predicted.
     Tracked up to 2 cells a tick (the default before), each edge was a new box: three tracks, no velocity, nothing
     predicted."""
-    def box(col):
-        return np.array([(row, c) for row in range(10, 13) for c in range(col, col + 3)])
-
-    for predictor, tracked in ((MotionPredictor((30, 40), max_speed=2.0), False), (MotionPredictor((30, 40)), True)):
+    def watched(predictor):
         for tick, col in ((1, 0), (2, 3), (3, 6)):
-            predictor.observe(tick, box(col))
-        arrivals = predictor.arrivals(3, 1)
-        ahead = {(row, col) for row in range(10, 13) for col in range(9, 12)}
-        assert (len(predictor.tracks) == 1) == tracked
-        assert ahead <= {cell for cell, tick in arrivals.items() if tick == 1} if tracked else not arrivals
-    assert predictor.tracks[0].velocity.tolist() == [0.0, 3.0]
+            predictor.observe(tick, np.array([(row, c) for row in range(10, 13) for c in range(col, col + 3)]))
+        return predictor
+
+    tracked = watched(MotionPredictor((30, 40)))
+    assert [track.velocity.tolist() for track in tracked.tracks] == [[0.0, 3.0]]
+    next_tick = {cell for cell, tick in tracked.arrivals(3, 1).items() if tick == 1}
+    assert {(row, col) for row in range(10, 13) for col in range(9, 12)} <= next_tick
+    before = watched(MotionPredictor((30, 40), max_speed=2.0))
+    assert len(before.tracks) == 3 and not before.arrivals(3, 1)
 
 
 def test_an_edge_beyond_a_slow_tracks_reach_does_not_take_it():
