@@ -75,6 +75,22 @@ def test_a_box_seen_every_other_tick_is_expected_within_the_periods_its_edges_al
     assert predictor.arrivals(7, 1) == {cell: 1 for cell in cells_of(column(13))}
 
 
+def test_boxes_in_step_either_way_are_each_expected_their_own_way():
+    """Two boxes of the test above, one going right from column 10 and one going left from column 30, edges at the
+    same ticks: the same periods and ticks since their last moves, apart only in their ways. The moves a slow box
+    makes are kept for the next box or tick that asks with the same arguments (``_paced_moves``): each box is
+    expected its own way - columns 13 and 14, 27 and 26 (hand-computed) - whichever is asked about first."""
+    predictor = MotionPredictor((20, 40))
+    for tick, (right, left) in ((2, (10, 30)), (4, (11, 29)), (6, (12, 28))):
+        predictor.observe(tick, np.vstack([column(right), column(left)]))
+        predictor.observe(tick + 1, np.zeros((0, 2)))
+    expected = {**{cell: 1 for cell in cells_of(np.vstack([column(13), column(27)]))},
+                **{cell: 3 for cell in cells_of(np.vstack([column(14), column(26)]))}}
+    for tracks in (predictor.tracks[:], predictor.tracks[::-1]):
+        predictor.tracks = tracks
+        assert predictor.arrivals(6, 3) == expected
+
+
 def test_a_box_whose_speed_its_edges_read_low_is_expected_as_early_as_they_allow():
     """A box at 0.37 cells per tick (a move every 2.7 ticks) shows edges at ticks 1, 4, 7 and 10 and its next at
     tick 12. Three moves in nine ticks read 1/3 cell per tick; a window of whole periods of 3 ticks expected the
