@@ -1,4 +1,4 @@
-"""Seeded random dynamic worlds in seven families, for benchmarks and quick worlds on any size.
+"""Seeded random dynamic worlds in eight families, for benchmarks and quick worlds on any size.
 
 Each family stresses one thing the planner must get right (sizes in cells scale with the map's side ``size``):
 
@@ -15,6 +15,9 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
 * ``passing``: one or two pairs of boxes shuttle across the route in neighbouring lanes 0-1 cell apart, passing each
   other the other way or overtaking: boxes that touch and part again, where a tracker must tell one from the other
   (two pairs sweep a cell clear of each other).
+* ``wandering``: small boxes drive to and fro across the middle of the robot's route through random waypoints near
+  it, turning at any angle at each (a warehouse's carts; every other family's boxes run on a line and turn only
+  back), and may cross each other's ways.
 
 ``make_world(family, size, seed)`` is deterministic: the same arguments give the same :class:`~tdp.world.Scenario`.
 ``maze(size, corridor, seed)`` draws a perfect maze's occupancy, a static map for benchmarks and tests.
@@ -32,7 +35,7 @@ from .field import DistanceField
 from .grid import GridMap
 from .world import Obstacle, Scenario
 
-FAMILIES = ("cluttered", "rooms", "corridor", "clearing", "moving-target", "crossing", "passing")
+FAMILIES = ("cluttered", "rooms", "corridor", "clearing", "moving-target", "crossing", "passing", "wandering")
 #: Metres per cell of the generated maps (as in the named scenarios: a robot at 0.5 m/s crosses a cell per 0.2 s
 #: tick).
 CELL_M = 0.1
@@ -50,6 +53,8 @@ GENERATION = 2
 #: The first number of boxes_on_map's random stream (a family's is its index in FAMILIES): 6, the count of families
 #: when it was written, kept so that its worlds stay as they were.
 _QUICK_STREAM = 6
+#: Directions a wandering box tries for its next leg before it stops where it is (``_wanderer``).
+WANDER_TRIES = 20
 #: Families whose worlds contain a change that cuts or opens a route (the others never cut one).
 CUTTING = ("rooms", "corridor", "clearing")
 
@@ -412,8 +417,50 @@ def _passing_pair(rng, size: int, stretch: list[tuple[int, int]], keep_out: np.n
     return pair
 
 
+def _wandering(size: int, rng) -> Scenario:
+    start, goal, occupied, route = _corner_to_corner(size, rng)
+    keep_out = _keep_free((size, size), [start, goal], 4) | occupied
+    boxes = [box for box in (_wanderer(rng, size, route, keep_out) for _ in range(int(rng.integers(2, 5)))) if box]
+    if not boxes:
+        raise _Redraw
+    return Scenario(GridMap(occupied, CELL_M), start, goal, obstacles=boxes,
+                    description="boxes wander about the robot's route, turning at any angle")
+
+
+def _wanderer(rng, size: int, route: list[tuple[int, int]], keep_out: np.ndarray) -> Obstacle | None:
+    """A box of side 2-4 (scaled) driving at 0.3-0.8 cells a tick through waypoints each within 8 cells (scaled) of
+    a random cell of the middle half of ``route`` and at least 5 (scaled) from the last, every leg a cell clear of
+    ``keep_out``, for the world's 6 x size ticks: it crosses the route again and again, at any angle; it stops early
+    where no leg fits. None where it cannot be set down."""
+    side = int(rng.integers(_scaled(size, 2), _scaled(size, 4) + 1))
+    speed, spread, shortest = float(rng.uniform(0.3, 0.8)), _scaled(size, 8), _scaled(size, 5)
+    middle = route[len(route) // 4:max(len(route) // 4 + 1, 3 * len(route) // 4)]
+
+    def near_route() -> tuple[int, int]:
+        r, c = middle[int(rng.integers(len(middle)))]
+        return tuple(int(np.clip(v - side // 2 + rng.integers(-spread, spread + 1), 0, size - side)) for v in (r, c))
+
+    here = near_route()
+    box = (here[0], here[1], here[0] + side, here[1] + side)
+    if (_band(keep_out.shape, box, [here], 1) & keep_out).any():
+        return None
+    waypoints, travelled = [], 0.0
+    while travelled < 6 * size * speed:
+        for _ in range(WANDER_TRIES):
+            there = near_route()
+            if math.dist(here, there) >= shortest and not (_band(keep_out.shape, box, [here, there], 1)
+                                                            & keep_out).any():
+                break
+        else:
+            break
+        waypoints.append(there)
+        travelled += math.dist(here, there)
+        here = there
+    return Obstacle(box=box, waypoints=waypoints, speed=speed) if waypoints else None
+
+
 _BUILDERS = {"cluttered": _cluttered, "rooms": _rooms, "corridor": _corridor, "clearing": _clearing,
-             "moving-target": _moving_target, "crossing": _crossing, "passing": _passing}
+             "moving-target": _moving_target, "crossing": _crossing, "passing": _passing, "wandering": _wandering}
 
 
 def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], boxes: int = 3, seed: int = 0,

@@ -73,6 +73,28 @@ def test_a_passing_worlds_pairs_come_side_by_side_within_a_cell_and_no_boxes_ove
     assert all(any(gap[0] < 0 <= gap[1] <= 1 for gap in gaps[i, i + 1]) for i in boxes[::2])
 
 
+@pytest.mark.parametrize("size, seed", [(60, 0), (100, 1), (300, 2), (60, 7)])
+def test_a_wandering_worlds_boxes_turn_at_any_angle_across_the_route_and_keep_off_the_map_and_its_ends(size, seed):
+    """Every box of a wandering world drives legs that turn by other angles than none and back (the other families'
+    boxes run on a line) and never touches the map's obstacles or comes within 4 cells of the start or the goal; a
+    box covers a cell of the robot's route at some tick."""
+    world = make_world("wandering", size, seed)
+    route = set(tdp.simulate(world).oracle_trajectory)
+    ends, crossed = np.array([world.start, world.goal]), False
+    for box in world.obstacles:
+        corners = np.array([box.box[:2], *box.waypoints], float)
+        legs = np.diff(corners, axis=0)
+        turns = [float(np.dot(a, b) / np.linalg.norm(a) / np.linalg.norm(b)) for a, b in zip(legs, legs[1:])]
+        assert any(abs(turn) < 0.9 for turn in turns), turns
+        for tick in range(world.max_ticks):
+            r0, c0, r1, c1 = box.footprint(tick)
+            assert not world.grid.occupied[r0:r1, c0:c1].any()
+            near = np.maximum(np.maximum([r0, c0] - ends, ends - [r1 - 1, c1 - 1]), 0).max(axis=1)
+            assert (near > 4).all(), (tick, box.footprint(tick))
+            crossed |= any((r, c) in route for r in range(r0, r1) for c in range(c0, c1))
+    assert crossed
+
+
 def test_a_quick_world_on_a_movingai_map():
     grid = tdp.load_map("tests/data/arena.map")
     ours, reference = both(boxes_on_map(grid, (1, 3), (47, 46), boxes=4, seed=3, blockage=True))
