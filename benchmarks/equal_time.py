@@ -5,7 +5,7 @@
 One process, the engine's threads (TDP_THREADS, default 2), warm (each planner kind's kernels compiled before any
 timing). Planners: exact replanning unbudgeted and with budgets of BUDGETS_MS per tick; accelerating nodes and
 plain DP at K = 1 and 4 and with budgets of DP_BUDGETS_MS (at least one iteration a tick whatever the budget);
-D* Lite (plain Python) on maps of at most DSTAR_MAX_SIDE cells a side. Worlds: the seven random-world families at
+D* Lite (plain Python) on maps of at most DSTAR_MAX_SIDE cells a side. Worlds: the eight random-world families at
 100 and 200 (SEEDS: three at 100, two at 200), the named scenarios, quick worlds with BOXES shuttling boxes and
 with a box appearing on the route on MovingAI maps (arena and den312d from tests/data, and from ../shared/data
 when present maze512-32-0, random512-10-0 and 8room_000, start and goal from their longest scenario), and nav2's
