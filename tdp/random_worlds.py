@@ -53,7 +53,7 @@ GENERATION = 2
 #: The first number of boxes_on_map's random stream (a family's is its index in FAMILIES): 6, the count of families
 #: when it was written, kept so that its worlds stay as they were.
 _QUICK_STREAM = 6
-#: Directions a wandering box tries for its next leg before it stops where it is (``_wanderer``).
+#: Waypoints a wandering box draws for its next leg before it stops where it is (``_wanderer``).
 WANDER_TRIES = 20
 #: Families whose worlds contain a change that cuts or opens a route (the others never cut one).
 CUTTING = ("rooms", "corridor", "clearing")
