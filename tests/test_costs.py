@@ -214,7 +214,8 @@ def test_cost_edits_need_a_map_with_costs_and_costs_from_1_to_max_cost():
             costed.set_costs([(1, 1)], bad)
     with pytest.raises(ValueError, match="set_costs"):
         costed.set_costs([(9, 9)], 2.0)
-    for bad in ([2.0, 3.0], "dear", [[2.0]] * 3, "2", True, [True], None, [[2.0], [3.0, 4.0]]):  # numpy reads "2" and True as costs
+    # numpy reads "2" and True as costs
+    for bad in ([2.0, 3.0], "dear", [[2.0]] * 3, "2", True, [True], None, [[2.0], [3.0, 4.0]]):
         with pytest.raises(ValueError, match="costs must be"):
             costed.set_costs([(1, 1)], bad)
     with pytest.raises(ValueError, match="trinary_costmap must be True or False"):

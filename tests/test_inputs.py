@@ -200,7 +200,8 @@ def test_a_masks_cells_are_argwheres_row_by_row(rows, cols, share, layout, seed)
     """A mask's cells are found as flat indices (2-D nonzero took ten times as long): the cells np.argwhere gives, in
     its order, for masks in any memory layout."""
     mask = np.random.default_rng(seed).random((2 * rows, 2 * cols)) < share
-    mask = {"C": mask[:rows, :cols].copy(), "F": np.asfortranarray(mask[:rows, :cols]), "strided": mask[::2, ::2]}[layout]
+    layouts = {"C": mask[:rows, :cols].copy(), "F": np.asfortranarray(mask[:rows, :cols]), "strided": mask[::2, ::2]}
+    mask = layouts[layout]
     cells = cells_from(mask.shape, mask, "update_map")
     assert cells.dtype == np.int32 and cells.flags.c_contiguous and np.array_equal(cells, np.argwhere(mask))
 
