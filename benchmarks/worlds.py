@@ -4,7 +4,7 @@
 
 A sweep spec (``benchmarks/specs/worlds.yaml``; edit it for other seeds, sizes or families) run through
 :mod:`tdp.sweep` on a local Dask cluster; its tables and ratio figure land in ``results/sweeps/worlds/``.
-Seven seeded families (``tdp.random_worlds``) at 100 x 100 and 200 x 200; accelerating nodes and plain DP at K = 1
+Eight seeded families (``tdp.random_worlds``) at 100 x 100 and 200 x 200; accelerating nodes and plain DP at K = 1
 and 4 (DP iterations per move); D* Lite (plain Python, same graph) and the oracle (exact distances every tick)
 once per world. Per family, K and planner: worlds, reached %, collisions, hits (a box drove onto the robot), mean
 and max ratio to the oracle (over the worlds every planner reached), worlds where accelerating nodes are worse
