@@ -3,7 +3,7 @@ blockage scenarios.
 
     python -m benchmarks.predict [--quick] [--held-out] [--workers N] [--resume]
 
-A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on a local Dask cluster: the seven
+A sweep spec (``benchmarks/specs/predict.yaml``) run through :mod:`tdp.sweep` on a local Dask cluster: the eight
 random-world families at 100 x 100 and 200 x 200 (8 seeds each) and the named scenarios moving-blockage and
 sudden-blockage; accelerating nodes at K = 1 and 4 with prediction in the node layers off or at a 4-tick horizon,
 and box avoidance off or on; exact replanning (K column "exact") with box avoidance off or on. Per group, K and
@@ -13,8 +13,8 @@ the fraction the exact pair distances justify (as in ``benchmarks.worlds``; a de
 closure counts as justified only if the closure comes within the look-back window), yields, and for the named
 scenarios the ticks from the change to the turn.
 ``--held-out`` runs ``benchmarks/specs/predict-held-out.yaml`` instead: box avoidance on seeds the tracker's rules
-were not tuned on (crossing and passing worlds of seeds 400-599, cluttered and moving-target ones of 400-449, at 60²
-and 100²).
+were not tuned on (crossing and passing worlds of seeds 400-599, cluttered, moving-target and wandering ones of
+400-449, at 60² and 100²).
 """
 from __future__ import annotations
 
