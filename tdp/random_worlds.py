@@ -431,7 +431,7 @@ def _wanderer(rng, size: int, route: list[tuple[int, int]], keep_out: np.ndarray
     """A box of side 2-4 (scaled) driving at 0.3-0.8 cells a tick through waypoints each within 8 cells (scaled) of
     a random cell of the middle half of ``route`` and at least 5 (scaled) from the last, every leg a cell clear of
     ``keep_out``, for the world's 6 x size ticks: it crosses the route again and again, at any angle; it stops early
-    where no leg fits. None where it cannot be set down."""
+    where no leg fits. None where no first leg fits (each leg's band holds where it starts)."""
     side = int(rng.integers(_scaled(size, 2), _scaled(size, 4) + 1))
     speed, spread, shortest = float(rng.uniform(0.3, 0.8)), _scaled(size, 8), _scaled(size, 5)
     middle = route[len(route) // 4:max(len(route) // 4 + 1, 3 * len(route) // 4)]
@@ -442,8 +442,6 @@ def _wanderer(rng, size: int, route: list[tuple[int, int]], keep_out: np.ndarray
 
     here = near_route()
     box = (here[0], here[1], here[0] + side, here[1] + side)
-    if (_band(keep_out.shape, box, [here], 1) & keep_out).any():
-        return None
     waypoints, travelled = [], 0.0
     while travelled < 6 * size * speed:
         for _ in range(WANDER_TRIES):
