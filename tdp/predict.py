@@ -12,11 +12,12 @@ its last edge and its faces. A track with no move along any axis within the most
 it has stopped and is dropped.
 
 The model is constant velocity in a straight line: it cannot foresee a box turning, reversing or stopping (it
-learns of each from the next edge it sees, one or two ticks late; a box that turns back is then taken to come back
-at the speed it went), and it knows nothing of obstacles that do not move. A box seen once (a new box, or one whose
-edge no track could have shown: a box turning back at the end of its run shows its far face) has no velocity yet:
-the cells it enters are predicted from its second edge on, and until then it may step a cell either way along the
-axes its edge's shape shows (:meth:`MotionPredictor.arrivals`). No world ids are used.
+learns of each from the next edge it sees, one or two ticks late; a box that turns is then taken to come back at the
+velocity it went, each axis's next move due at the box's speed), and it knows nothing of obstacles that do not
+move. A box seen once (a new box, or one whose edge no track could have shown: a box turning back at the end of its
+run shows its far face) has no velocity yet: the cells it enters are predicted from its second edge on, and until
+then it may step a cell either way along the axes its edge's shape shows (:meth:`MotionPredictor.arrivals`). No world
+ids are used.
 """
 from __future__ import annotations
 
@@ -55,7 +56,9 @@ class Track:
     position) of the edge the track (re)started from and the axes it surely moved the box along
     (:func:`_moved_along`), per axis (rows, cols) the (tick, place along it) of the last HISTORY edges since then that
     moved the box along it, per axis the ``faces``: the last edge that moved the box along it, brought along with
-    the box since (None before the first), and the slowest speed tracked (``min_speed``, cells per tick)."""
+    the box since (None before the first), the slowest speed tracked (``min_speed``, cells per tick) and, for a track
+    that restarted at a turn, the box's speed then (``turn_speed``, its velocity's length; 0 for a track that started
+    with no velocity)."""
 
     edge: np.ndarray
     tick: int
@@ -66,6 +69,7 @@ class Track:
     axis_moves: tuple = ((), ())
     faces: tuple = (None, None)
     min_speed: float = 0.25
+    turn_speed: float = 0.0
     speed: float = field(init=False)  # the velocity's largest row or col component, in cells per tick (0: unknown)
 
     def __post_init__(self):
@@ -83,9 +87,12 @@ class Track:
         counts as a move along the axis where its shape says it moved the box along it (:func:`_moved_along`). With
         one move, a tick or more (the first reads of a diagonal box, before its direction is known, may have taken a
         move along one axis for none: a single cell, then a row of two, may be a move up or up and left); with
-        none since a turn, 1 / speed, and up to a tick more."""
+        none since the start, 1 / speed and up to a tick more, but since a turn from 1 / ``turn_speed`` on: a box
+        turning at any angle may put all its speed on either axis, at a phase its old moves do not give (a one-cell
+        box going down and to the right turned up and to the left, a move left, then up, then left a tick later, and
+        drove onto the robot beside it: wandering-60-61 of the tuning seeds)."""
         start_tick, start, start_moved = self.origin
-        return tuple(_periods(abs(speed), (start_tick, place), moves, moved)
+        return tuple(_periods(abs(speed), (start_tick, place), moves, moved, self.turn_speed)
                      for speed, place, moves, moved in zip(self.velocity.tolist(), start.tolist(), self.axis_moves,
                                                            start_moved))
 
@@ -350,14 +357,17 @@ class MotionPredictor:
         return cells[self._inside(cells)]
 
 
-def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: bool) -> tuple[float, float] | None:
+def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: bool, turn_speed: float = 0.0
+             ) -> tuple[float, float] | None:
     """The fewest and most ticks a move along an axis may take (:attr:`Track.periods`) for a box moving at ``speed``
     cells per tick along it over its last edges, from the (tick, place along the axis) of the edge it started from,
-    those of its ``moves`` along it since (the last HISTORY), and whether that start is known to have moved it along
-    the axis; None where it does not move along it. With one move (or moves that cancel out), from 1 tick, with no
+    those of its ``moves`` along it since (the last HISTORY), whether that start is known to have moved it along
+    the axis, and the box's speed when its track restarted at a turn (0: it did not); None where it does not move
+    along it. With one move (or moves that cancel out), from 1 tick, with no
     bound above, and so where the moves are faster than a cell a tick (more cells than ticks and one: an edge
     misread, another box's cells taken for this one's - the bounds were then a most below the fewest, and no count of
-    moves fit any tick); with none since the start (a turn), 1 / speed and a tick more."""
+    moves fit any tick); with none since the start, 1 / speed and a tick more, from 1 / ``turn_speed`` (a tick at
+    least) after a turn."""
     counted = (start,) + moves if start_moved and len(moves) < HISTORY else moves  # the start still in the history
     ticks = counted[-1][0] - counted[0][0] if counted else 0
     cells = sum(abs(after - before) for (_, before), (_, after) in zip(counted, counted[1:]))  # back and forth too
@@ -367,7 +377,9 @@ def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: 
         return round(max(1.0, (ticks - 1) / cells), 9), round((ticks + 1) / cells, 9)  # whole periods stay whole
     if moves:  # the move before the one seen came at any time (the first reads of a track may have missed it)
         return 1.0, math.inf
-    return (1.0 / speed, 1.0 / speed + 1.0) if speed > 0.0 else None
+    if speed <= 0.0:
+        return None
+    return max(1.0, 1.0 / max(turn_speed, speed)), 1.0 / speed + 1.0
 
 
 @lru_cache(maxsize=4096)
@@ -538,25 +550,32 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
 
 
 def _started(edge: np.ndarray, tick: int, bounds: tuple[int, int, int, int], position: np.ndarray,
-             velocity: np.ndarray | None, min_speed: float) -> Track:
+             velocity: np.ndarray | None, min_speed: float, shift=(0.0, 0.0)) -> Track:
     """A track (re)starting from ``edge`` (seen at ``tick``, within ``bounds``) at ``position``: its history and its
-    origin that edge, its faces the edge along the axes its shape says it moved the box along (:func:`_moved_along`),
-    no move along either axis yet."""
-    moved = _moved_along(edge, bounds)
-    return Track(edge, tick, bounds, velocity, ((tick, position),), (tick, position, moved), ((), ()),
-                 tuple(edge if along else None for along in moved), min_speed)
+    origin that edge, its faces the edge along the axes its shape says it moved the box along (:func:`_moved_along`)
+    or its ``shift`` from the box's last edge did (a turn), no move along either axis yet. With a ``velocity`` (a
+    turn), the history holds the place the box came from at that velocity a tick before: its next edges' mean
+    velocity keeps the turn's along an axis they do not move it on yet (from one interval alone, a diagonal box's
+    first move up after a turn read as going straight up, and its next move left went unforeseen)."""
+    moved = tuple(bool(a or b) for a, b in zip(_moved_along(edge, bounds), np.abs(shift) >= 0.5))
+    seen, turn_speed = ((tick, position),), 0.0
+    if velocity is not None:
+        seen, turn_speed = ((tick - 1, position - velocity), (tick, position)), float(np.hypot(*velocity))
+    return Track(edge, tick, bounds, velocity, seen, (tick, position, moved), ((), ()),
+                 tuple(edge if along else None for along in moved), min_speed, turn_speed)
 
 
 def _continued(track: Track, edge: np.ndarray, tick: int, bounds: tuple[int, int, int, int],
                shift: np.ndarray) -> Track:
     """``track`` once its next ``edge`` (within ``bounds``) is seen at ``tick``, ``shift`` from its last
     (:func:`edge_shift`): the mean velocity over its last HISTORY edges; per axis it moved along, the move and the
-    edge as its face, the other faces moved on by the shift. A box whose edge moved against its velocity turned back,
-    and is taken to come back at the speed it went, its track starting again from this edge (a mean over edges on
-    both sides of the turn says it barely moves)."""
+    edge as its face, the other faces moved on by the shift. A box whose edge moved against its velocity turned (back,
+    or at any other angle), and is taken to come back at the velocity it went, its track starting again from this
+    edge (a mean over edges on both sides of the turn says it barely moves); the edge's shift says which axes it moved
+    the box along."""
     position = track.position + shift
     if track.velocity is not None and float(np.dot(shift, track.velocity)) < 0:
-        return _started(edge, tick, bounds, position, -track.velocity, track.min_speed)
+        return _started(edge, tick, bounds, position, -track.velocity, track.min_speed, shift)
     seen = (track.seen + ((tick, position),))[-HISTORY:]
     velocity = np.round((seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), 9)  # a cell a tick stays 1
     along = np.abs(shift) >= 0.5
@@ -564,7 +583,7 @@ def _continued(track: Track, edge: np.ndarray, tick: int, bounds: tuple[int, int
                        for moves, moved, place in zip(track.axis_moves, along, position))
     offset = np.rint(shift).astype(np.int64)
     faces = tuple(edge if moved else None if face is None else face + offset for face, moved in zip(track.faces, along))
-    return Track(edge, tick, bounds, velocity, seen, track.origin, axis_moves, faces, track.min_speed)
+    return Track(edge, tick, bounds, velocity, seen, track.origin, axis_moves, faces, track.min_speed, track.turn_speed)
 
 
 def _bounds(edge: np.ndarray) -> tuple[int, int, int, int]:

@@ -659,3 +659,19 @@ def test_prediction_turns_the_robot_earlier_when_a_box_moves_into_its_passage():
         assert record["reached"]
         turns[horizon] = turn_and_closest(scenario, record["trajectory"], route)["turn_after"]
     assert turns[4] <= turns[0] - 3
+
+
+def test_a_box_that_turned_keeps_the_turns_pace_along_the_axis_it_has_not_moved_on_since():
+    """A one-cell box going down and to the right, a row and a col in turn (ticks 1-5), turns: a move left at tick
+    6 (its track restarts, taken to come back up and to the left), a move up at tick 7. Its next move left may come
+    at tick 8: the turn's velocity is kept along the cols its edges have not moved since, and its pace there is the
+    box's speed (a third and two thirds of a cell a tick over its last edges: 0.75), counted from the turn. Read
+    from the move up alone, it was going straight up, and the cell to its left, where a robot stood, was flagged by
+    nothing (wandering-60-61 of the tuning seeds)."""
+    predictor = MotionPredictor((30, 30))
+    for tick, cell in enumerate([(10, 10), (11, 10), (11, 11), (12, 11), (12, 12), (12, 11), (11, 11)], start=1):
+        predictor.observe(tick, np.array([cell]))
+    track, = predictor.tracks
+    assert track.velocity[1] < 0 and track.turn_speed == pytest.approx(math.hypot(1 / 3, 2 / 3))
+    arrivals = predictor.arrivals(7, 2)
+    assert arrivals.get((11, 10)) == 1 and arrivals.get((10, 11)) == 1  # left, or up again, at the next tick
