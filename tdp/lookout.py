@@ -70,24 +70,37 @@ class BoxLookout:
         """The move to make given the cells the tracked boxes are predicted to enter (and at the next tick those right
         behind a moving box, which it enters if it turns back: :meth:`MotionPredictor.behind`): ``wanted`` if the
         robot meets no box on its next ``meet_ticks`` moves (:meth:`_meets_a_box`; ``route(k)``: the robot's next k
-        cells); else stay (yield: None) if none enters the robot's cell at the next tick; else step aside to one of the
-        ``legal_moves()`` (cell, length; asked for only then) that no box enters at the next tick - one that none
-        enters within ``avoid_ticks`` if there is such, the lowest followed layer's value (``values`` of cells) plus
-        the move's length among them; ``wanted`` when every move is entered at the next tick."""
+        cells) and ``wanted`` lies beside no moving box (:meth:`MotionPredictor.beside`: a box turning at any angle
+        drives onto a robot next to it before its edges show the turn); else stay (yield: None) if none enters the
+        robot's cell at the next tick; else step aside to one of the ``legal_moves()`` (cell, length; asked for only
+        then) that no box enters at the next tick - one that none enters within ``avoid_ticks`` and that lies beside
+        no moving box if there is such, the lowest followed layer's value (``values`` of cells) plus the move's length
+        among them; ``wanted`` when every move is entered at the next tick."""
         arrivals = self.predictor.arrivals(self.ticks, self.config.avoid_ticks, near=(robot, REACH))
         behind = self.predictor.behind(self.ticks, self.engine.occupied, near=(robot, REACH))
         arrivals.update((cell, 1) for cell in map(tuple, behind.tolist()))  # a box may turn back into them
-        if wanted is not None and not self._meets_a_box(robot, wanted, arrivals, route):
+        if (wanted is not None and self._box_gaps([wanted])[0] > 1
+                and not self._meets_a_box(robot, wanted, arrivals, route)):
             return wanted
-        if arrivals.get(robot, math.inf) > 1:
+        entered = arrivals.get(robot, math.inf) <= 1
+        if not entered and self._box_gaps([robot])[0] > 1:
             return None
         options = [(cell, cost) for cell, cost in legal_moves() if arrivals.get(cell, math.inf) > 1]
         if not options:
-            return wanted
+            return wanted if entered else None
         layer = values([cell for cell, _ in options])
-        clear = [arrivals.get(cell, math.inf) > self.config.avoid_ticks for cell, _ in options]
-        best = max(range(len(options)), key=lambda i: (clear[i], -(layer[i] + options[i][1])))
+        gaps = self._box_gaps([cell for cell, _ in options])
+        clear = [arrivals.get(cell, math.inf) > self.config.avoid_ticks and gap > 1
+                 for (cell, _), gap in zip(options, gaps)]
+        if not entered and not any(clear):  # beside a box, with no clearer cell to go to
+            return None
+        away = [0] * len(options) if entered else gaps.tolist()  # off a cell beside a box: away from it first
+        best = max(range(len(options)), key=lambda i: (clear[i], away[i], -(layer[i] + options[i][1])))
         return options[best][0]
+
+    def _box_gaps(self, cells: list[Cell]) -> np.ndarray:
+        """How far each of ``cells`` lies from a moving box (:meth:`MotionPredictor.box_gaps`; 1: next to it)."""
+        return self.predictor.box_gaps(self.ticks, self.engine.occupied, cells)
 
     def _meets_a_box(self, robot: Cell, wanted: Cell, arrivals: dict[Cell, int],
                      route: Callable[[int], list[Cell]]) -> bool:

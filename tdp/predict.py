@@ -29,6 +29,11 @@ import numpy as np
 
 #: Offsets of the 8-neighbourhood, for clustering the cells that became occupied.
 _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
+#: The farthest from a moving box, in cells, that :meth:`MotionPredictor.box_gaps` tells apart.
+GAP_MOST = 2
+_NEAR_OFFSETS = np.array([(dr, dc) for dr in range(-GAP_MOST, GAP_MOST + 1) for dc in range(-GAP_MOST, GAP_MOST + 1)],
+                         np.int64)
+_NEAR_GAPS = np.abs(_NEAR_OFFSETS).max(axis=1)
 
 
 #: Edges a track remembers, and moves along each axis: its velocity is the mean over its last edges (a box at 0.3
@@ -287,6 +292,32 @@ class MotionPredictor:
             found = found[_within(found, found, *near)]
         flat = np.unique(found[:, 0] * self.shape[1] + found[:, 1])
         return np.column_stack(np.divmod(flat, self.shape[1]))
+
+    def box_gaps(self, tick: int, occupied: np.ndarray, cells: list[tuple[int, int]]) -> np.ndarray:
+        """How far each of ``cells`` (row, col pairs inside the map) lies from a box moving at ``tick``, in cells (rows
+        and cols; 0 inside it, 1 next to it; GAP_MOST + 1 where further): from the nearest cell occupied in
+        ``occupied`` ((H, W) bool, the map now) within the box's largest edge or face of its front
+        (:attr:`Track.front`), either way - the box as the map shows it, since the tracker sees its leading edges
+        alone (an obstacle that close to it counts too). A box turning at any angle drives onto a robot next to it a
+        tick after its edge shows the turn."""
+        gaps = np.full(len(cells), GAP_MOST + 1, np.int64)
+        if not cells:
+            return gaps
+        cells = np.asarray(cells, np.int64)
+        asked = _bounds(cells)
+        zones = [(track.front_bounds, track.sizes[1]) for track in self._moving(tick)
+                 if _gap(track.front_bounds, asked) <= track.sizes[1] + GAP_MOST]
+        if not zones:
+            return gaps
+        around = cells[:, None, :] + _NEAR_OFFSETS[None]
+        inside = self._inside(around.reshape(-1, 2)).reshape(around.shape[:2])
+        clipped = np.minimum(np.maximum(around, 0), np.array(self.shape) - 1)
+        taken = inside & occupied[clipped[..., 0], clipped[..., 1]]
+        boxed = np.zeros_like(taken)
+        for (r0, c0, r1, c1), depth in zones:
+            boxed |= (taken & (around[..., 0] >= r0 - depth) & (around[..., 0] <= r1 + depth)
+                      & (around[..., 1] >= c0 - depth) & (around[..., 1] <= c1 + depth))
+        return np.where(boxed, _NEAR_GAPS[None], GAP_MOST + 1).min(axis=1)
 
     def _first_free(self, cells: np.ndarray, ways: np.ndarray, depths: np.ndarray, occupied: np.ndarray
                     ) -> np.ndarray:

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 import tdp
 from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
 from tdp.contract import Mode, WorldFeed
-from tdp.predict import MotionPredictor, Track, clusters
+from tdp.predict import GAP_MOST, MotionPredictor, Track, clusters
 from tdp.random_worlds import make_world
 from tdp.simulate import oracle_run
 
@@ -675,3 +675,37 @@ def test_a_box_that_turned_keeps_the_turns_pace_along_the_axis_it_has_not_moved_
     assert track.velocity[1] < 0 and track.turn_speed == pytest.approx(math.hypot(1 / 3, 2 / 3))
     arrivals = predictor.arrivals(7, 2)
     assert arrivals.get((11, 10)) == 1 and arrivals.get((10, 11)) == 1  # left, or up again, at the next tick
+
+
+def test_a_cells_gap_to_a_moving_box_is_measured_to_the_box_as_the_map_shows_it():
+    """A 2 x 2 box going right a cell a tick (rows 5-6; its leading column at col 10, then 11) covers cols 10-11;
+    a wall cell lies at (5, 20). Gaps (hand-computed): 0 at (5, 10), in it; 1 at (4, 10) above it, (7, 12) by its
+    corner and (6, 9) behind it; 2 at (5, 13) and (3, 11); 3 - further than GAP_MOST - at (5, 14) and at (4, 20),
+    by the wall, which lies beyond the box's reach. Once the box stops (no edge for 6 ticks) no cell is near a
+    moving box."""
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(1, column(10, range(5, 7)))
+    predictor.observe(2, column(11, range(5, 7)))
+    occupied = np.zeros((20, 30), bool)
+    occupied[5:7, 10:12] = occupied[5, 20] = True
+    cells = [(5, 10), (4, 10), (7, 12), (6, 9), (5, 13), (3, 11), (5, 14), (4, 20)]
+    assert GAP_MOST == 2 and predictor.box_gaps(2, occupied, cells).tolist() == [0, 1, 1, 1, 2, 2, 3, 3]
+    for tick in range(3, 9):
+        predictor.observe(tick, np.zeros((0, 2)))
+    assert (predictor.box_gaps(8, occupied, cells) == 3).all() and predictor.box_gaps(8, occupied, []).size == 0
+
+
+@pytest.mark.parametrize("turn_col", [14, 17])
+def test_a_robot_keeps_clear_of_a_box_passing_beside_it_that_turns_onto_its_way(turn_col):
+    """Open ground, the robot driving east along row 10, a 2 x 2 box driving west along rows 11-12 at half a cell a
+    tick, beside the robot's row, then turning north across it at ``turn_col``. Nothing predicted the box's cells
+    on row 10 before it turned: the robot drove next to the box and was driven over (col 17: 4 hit ticks, with
+    avoidance or without). Kept off the cells beside a moving box it is never hit - if it also steps off such a cell
+    once the box comes beside it: only kept from stepping onto one, it waited beside the box as it passed and was
+    driven over at col 14 (4 hit ticks; none without avoidance)."""
+    box = tdp.Obstacle(box=(11, 24, 13, 26), waypoints=[(11, turn_col), (2, turn_col)], speed=0.5)
+    scenario = tdp.Scenario(tdp.GridMap(np.zeros((24, 32), bool)), (10, 2), (10, 29), obstacles=[box], max_ticks=120)
+    for avoid in (False, True):
+        record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=avoid))
+        assert record["reached"] and record["collisions"] == 0
+        assert (record["hits"] > 0) == (not avoid and turn_col == 17)
