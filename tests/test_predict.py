@@ -709,3 +709,16 @@ def test_a_robot_keeps_clear_of_a_box_passing_beside_it_that_turns_onto_its_way(
         record, _ = run_navigator(scenario, tdp.NavigatorConfig(avoid_boxes=avoid))
         assert record["reached"] and record["collisions"] == 0
         assert (record["hits"] > 0) == (not avoid and turn_col == 17)
+
+
+def test_a_robot_stepping_off_a_cell_next_to_a_box_steps_away_from_it_rather_than_escort_it():
+    """crossing-60-418 of the held-out seeds, accelerating nodes at K = 1: a 3 x 3 box shuttles diagonally across
+    the robot's way. Stepping off each cell the box came beside to the clear cell nearest the goal, the robot kept
+    just ahead of the box's corner and escorted it, back and forth, for 250 ticks (334 against the oracle's 53);
+    away from the box first, it lets the box pass (84)."""
+    scenario = make_world("crossing", 60, 418)
+    config = tdp.NavigatorConfig(planner="accelerating", updates_per_move=1, avoid_boxes=True)
+    record, _ = run_navigator(scenario, config, 400)
+    oracle = oracle_run(scenario, tdp.NavigatorConfig(), 400)
+    assert record["reached"] and record["hits"] == 0
+    assert record["ticks"] <= 2 * (len(oracle["trajectory"]) - 1)
