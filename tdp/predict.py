@@ -31,8 +31,11 @@ import numpy as np
 _AROUND = [(dr, dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
 #: The farthest from a moving box, in cells, that :meth:`MotionPredictor.box_gaps` tells apart.
 GAP_MOST = 2
-_NEAR_OFFSETS = np.array([(dr, dc) for dr in range(-GAP_MOST, GAP_MOST + 1) for dc in range(-GAP_MOST, GAP_MOST + 1)],
-                         np.int64)
+#: The most cells :meth:`MotionPredictor.box_gaps` takes off a fast box's gaps: one less than the cells it may cover
+#: in a tick (a box tracked at up to 4 cells a tick).
+FAST_REACH = 3
+_NEAR = GAP_MOST + FAST_REACH
+_NEAR_OFFSETS = np.array([(dr, dc) for dr in range(-_NEAR, _NEAR + 1) for dc in range(-_NEAR, _NEAR + 1)], np.int64)
 _NEAR_GAPS = np.abs(_NEAR_OFFSETS).max(axis=1)
 
 
@@ -298,26 +301,30 @@ class MotionPredictor:
         and cols; 0 inside it, 1 next to it; GAP_MOST + 1 where further): from the nearest cell occupied in
         ``occupied`` ((H, W) bool, the map now) within the box's largest edge or face of its front
         (:attr:`Track.front`), either way - the box as the map shows it, since the tracker sees its leading edges
-        alone (an obstacle that close to it counts too). A box turning at any angle drives onto a robot next to it a
-        tick after its edge shows the turn."""
+        alone (an obstacle that close to it counts too) -, less the cells beyond one that a box faster than a cell a
+        tick may cover in one (ceil(speed) - 1, FAST_REACH at most; never below 0). A box turning at any angle drives
+        onto a robot next to it - a fast one onto a robot within its tick's reach - a tick after its edge shows the
+        turn."""
         gaps = np.full(len(cells), GAP_MOST + 1, np.int64)
         if not cells:
             return gaps
         cells = np.asarray(cells, np.int64)
         asked = _bounds(cells)
-        zones = [(track.front_bounds, track.sizes[1]) for track in self._moving(tick)
-                 if _gap(track.front_bounds, asked) <= track.sizes[1] + GAP_MOST]
+        zones = [(track.front_bounds, track.sizes[1], min(FAST_REACH, max(math.ceil(track.speed) - 1, 0)))
+                 for track in self._moving(tick)]
+        zones = [zone for zone in zones if _gap(zone[0], asked) <= zone[1] + GAP_MOST + zone[2]]
         if not zones:
             return gaps
         around = cells[:, None, :] + _NEAR_OFFSETS[None]
         inside = self._inside(around.reshape(-1, 2)).reshape(around.shape[:2])
         clipped = np.minimum(np.maximum(around, 0), np.array(self.shape) - 1)
         taken = inside & occupied[clipped[..., 0], clipped[..., 1]]
-        boxed = np.zeros_like(taken)
-        for (r0, c0, r1, c1), depth in zones:
-            boxed |= (taken & (around[..., 0] >= r0 - depth) & (around[..., 0] <= r1 + depth)
-                      & (around[..., 1] >= c0 - depth) & (around[..., 1] <= c1 + depth))
-        return np.where(boxed, _NEAR_GAPS[None], GAP_MOST + 1).min(axis=1)
+        for (r0, c0, r1, c1), depth, reach in zones:
+            boxed = (taken & (around[..., 0] >= r0 - depth) & (around[..., 0] <= r1 + depth)
+                     & (around[..., 1] >= c0 - depth) & (around[..., 1] <= c1 + depth))
+            near = np.where(boxed, np.maximum(_NEAR_GAPS[None] - reach, 0), GAP_MOST + 1)
+            gaps = np.minimum(gaps, near.min(axis=1))
+        return gaps
 
     def _first_free(self, cells: np.ndarray, ways: np.ndarray, depths: np.ndarray, occupied: np.ndarray
                     ) -> np.ndarray:

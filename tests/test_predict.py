@@ -722,3 +722,17 @@ def test_a_robot_stepping_off_a_cell_next_to_a_box_steps_away_from_it_rather_tha
     oracle = oracle_run(scenario, tdp.NavigatorConfig(), 400)
     assert record["reached"] and record["hits"] == 0
     assert record["ticks"] <= 2 * (len(oracle["trajectory"]) - 1)
+
+
+def test_a_fast_boxs_gaps_shrink_by_the_cells_it_may_cover_beyond_one_in_a_tick():
+    """The 2 x 2 box of the test above going right at 3 cells a tick (its leading column at col 8, then 11; it
+    covers cols 10-11): (5, 14) is 3 cells from it, less the 2 cells beyond one that it may cover in a tick: 1, next
+    to it; (5, 15) 2; (5, 17), 6 cells away, further than GAP_MOST (hand-computed). At a cell a tick or less nothing
+    is taken off (the test above)."""
+    predictor = MotionPredictor((20, 30))
+    predictor.observe(1, column(8, range(5, 7)))
+    predictor.observe(2, column(11, range(5, 7)))
+    occupied = np.zeros((20, 30), bool)
+    occupied[5:7, 10:12] = True
+    assert predictor.tracks[0].speed == 3.0
+    assert predictor.box_gaps(2, occupied, [(5, 14), (5, 15), (5, 17)]).tolist() == [1, 2, 3]
