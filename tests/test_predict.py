@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 import tdp
 from benchmarks.common import run_navigator, turn_and_closest, unblocked_route
 from tdp.contract import Mode, WorldFeed
+from tdp.lookout import step_aside
 from tdp.predict import GAP_MOST, MotionPredictor, Track, clusters
 from tdp.random_worlds import make_world
 from tdp.simulate import oracle_run
@@ -736,3 +737,19 @@ def test_a_fast_boxs_gaps_shrink_by_the_cells_it_may_cover_beyond_one_in_a_tick(
     occupied[5:7, 10:12] = True
     assert predictor.tracks[0].speed == 3.0
     assert predictor.box_gaps(2, occupied, [(5, 14), (5, 15), (5, 17)]).tolist() == [1, 2, 3]
+
+
+def test_a_step_aside_takes_a_clear_cell_the_cheapest_when_driven_onto_and_the_furthest_when_only_beside():
+    """``step_aside`` on hand-made options (cell, cost, first arrival, gap to a box). Clear cells (no arrival within
+    2 ticks, not next to a box) come first. A robot a box is about to drive onto takes the cheapest of them; one a box
+    only came beside takes the furthest from the boxes (toward the goal it escorted a box shuttling across its way),
+    and stays where none is clear; driven onto with none clear, it takes the cheapest that no box enters at the next
+    tick."""
+    cells = [(0, 0), (0, 1), (0, 2), (0, 3)]
+    costs = np.array([5.0, 3.0, 1.0, 2.0])
+    arrivals = [math.inf, math.inf, 2, math.inf]
+    gaps = np.array([3, 2, 3, 1])
+    assert step_aside(cells, costs, arrivals, gaps, 2, entered=True) == (0, 1)
+    assert step_aside(cells, costs, arrivals, gaps, 2, entered=False) == (0, 0)
+    assert step_aside(cells[2:], costs[2:], arrivals[2:], gaps[2:], 2, entered=False) is None
+    assert step_aside(cells[2:], costs[2:], arrivals[2:], gaps[2:], 2, entered=True) == (0, 2)
