@@ -401,11 +401,10 @@ def _periods(speed: float, start: tuple[int, float], moves: tuple, start_moved: 
     cells per tick along it over its last edges, from the (tick, place along the axis) of the edge it started from,
     those of its ``moves`` along it since (the last HISTORY), whether that start is known to have moved it along
     the axis, and the box's speed when its track restarted at a turn (0: it did not); None where it does not move
-    along it. With one move (or moves that cancel out), from 1 tick, with no
-    bound above, and so where the moves are faster than a cell a tick (more cells than ticks and one: an edge
-    misread, another box's cells taken for this one's - the bounds were then a most below the fewest, and no count of
-    moves fit any tick); with none since the start, 1 / speed and a tick more, from 1 / ``turn_speed`` (a tick at
-    least) after a turn."""
+    along it. With one move (or moves that cancel out), from 1 tick, with no bound above, and so where the moves are
+    faster than a cell a tick (more cells than ticks and one: an edge misread, another box's cells taken for this
+    one's - the bounds were then a most below the fewest, and no count of moves fit any tick); with none since the
+    start, 1 / speed and a tick more, from 1 / ``turn_speed`` (a tick at least) after a turn."""
     counted = (start,) + moves if start_moved and len(moves) < HISTORY else moves  # the start still in the history
     ticks = counted[-1][0] - counted[0][0] if counted else 0
     cells = sum(abs(after - before) for (_, before), (_, after) in zip(counted, counted[1:]))  # back and forth too
