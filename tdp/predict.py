@@ -286,8 +286,8 @@ class MotionPredictor:
         counts = [len(front) for front in fronts]
         cells = np.vstack(fronts)
         ways, depths = np.repeat(np.array(ways, np.int64), counts, axis=0), np.repeat(depths, counts)
-        walked = self._inside(cells)  # a face moved on with its box may lie past the map's edge (a misread cluster)
-        walked[walked] = occupied[cells[walked, 0], cells[walked, 1]]  # where the box still is
+        # where the box still is; a face moved on with its box may lie past the map's edge (a misread cluster)
+        _, walked = self._occupied_at(occupied, cells)
         if near is not None:
             walked &= _within(cells + ways, cells + ways * depths[:, None], *near)
         found = self._first_free(cells[walked], ways[walked], depths[walked], occupied)
@@ -316,9 +316,7 @@ class MotionPredictor:
         if not zones:
             return gaps
         around = cells[:, None, :] + _NEAR_OFFSETS[None]
-        inside = self._inside(around.reshape(-1, 2)).reshape(around.shape[:2])
-        clipped = np.minimum(np.maximum(around, 0), np.array(self.shape) - 1)
-        taken = inside & occupied[clipped[..., 0], clipped[..., 1]]
+        _, taken = self._occupied_at(occupied, around)
         for (r0, c0, r1, c1), depth, reach in zones:
             boxed = (taken & (around[..., 0] >= r0 - depth) & (around[..., 0] <= r1 + depth)
                      & (around[..., 1] >= c0 - depth) & (around[..., 1] <= c1 + depth))
@@ -336,10 +334,9 @@ class MotionPredictor:
             return cells
         steps = np.arange(1, int(depths.max()) + 1)
         line = cells[:, None, :] + ways[:, None, :] * steps[None, :, None]
-        inside = ((line >= 0).all(axis=2) & (line[:, :, 0] < self.shape[0]) & (line[:, :, 1] < self.shape[1])
-                  & (steps[None, :] <= depths[:, None]))
-        clipped = np.minimum(np.maximum(line, 0), np.array(self.shape) - 1)
-        free = inside & ~occupied[clipped[:, :, 0], clipped[:, :, 1]]
+        on_map, taken = self._occupied_at(occupied, line)
+        inside = on_map & (steps[None, :] <= depths[:, None])
+        free = inside & ~taken
         first = np.argmax(free | ~inside, axis=1)  # the walk ends at a free cell, its depth or the map's edge
         rows = np.arange(len(cells))
         return line[rows, first][free[rows, first]]
@@ -359,8 +356,15 @@ class MotionPredictor:
                 and (near is None or _may_reach(track, tick + ahead, *near))]
 
     def _inside(self, cells: np.ndarray) -> np.ndarray:
-        """Which rows of ``cells`` lie inside the map (a bool per row)."""
-        return (cells >= 0).all(axis=1) & (cells[:, 0] < self.shape[0]) & (cells[:, 1] < self.shape[1])
+        """Which of ``cells`` ((..., 2) row, col) lie inside the map (a bool per cell)."""
+        return (cells >= 0).all(axis=-1) & (cells[..., 0] < self.shape[0]) & (cells[..., 1] < self.shape[1])
+
+    def _occupied_at(self, occupied: np.ndarray, cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Which of ``cells`` ((..., 2) row, col, any of them off the map) lie inside the map, and which of those
+        are occupied in ``occupied`` ((H, W) bool): a bool per cell each."""
+        inside = self._inside(cells)
+        clipped = np.minimum(np.maximum(cells, 0), np.array(self.shape) - 1)
+        return inside, inside & occupied[clipped[..., 0], clipped[..., 1]]
 
     @staticmethod
     def _moves(track: Track, waited: int, ahead: int) -> tuple[np.ndarray, np.ndarray]:
@@ -587,14 +591,14 @@ def clusters(cells: np.ndarray) -> list[np.ndarray]:
 
 
 def _started(edge: np.ndarray, tick: int, bounds: tuple[int, int, int, int], position: np.ndarray,
-             velocity: np.ndarray | None, min_speed: float, shift=(0.0, 0.0)) -> Track:
+             velocity: np.ndarray | None, min_speed: float, shifted=(False, False)) -> Track:
     """A track (re)starting from ``edge`` (seen at ``tick``, within ``bounds``) at ``position``: its history and its
     origin that edge, its faces the edge along the axes its shape says it moved the box along (:func:`_moved_along`)
-    or its ``shift`` from the box's last edge did (a turn), no move along either axis yet. With a ``velocity`` (a
-    turn), the history holds the place the box came from at that velocity a tick before: its next edges' mean
-    velocity keeps the turn's along an axis they do not move it on yet (from one interval alone, a diagonal box's
-    first move up after a turn read as going straight up, and its next move left went unforeseen)."""
-    moved = tuple(bool(a or b) for a, b in zip(_moved_along(edge, bounds), np.abs(shift) >= 0.5))
+    or its shift from the box's last edge did (``shifted``, per axis: a turn), no move along either axis yet. With a
+    ``velocity`` (a turn), the history holds the place the box came from at that velocity a tick before: its next
+    edges' mean velocity keeps the turn's along an axis they do not move it on yet (from one interval alone, a
+    diagonal box's first move up after a turn read as going straight up, and its next move left went unforeseen)."""
+    moved = tuple(bool(a or b) for a, b in zip(_moved_along(edge, bounds), shifted))
     seen, turn_speed = ((tick, position),), 0.0
     if velocity is not None:
         seen, turn_speed = ((tick - 1, position - velocity), (tick, position)), float(np.hypot(*velocity))
@@ -610,12 +614,11 @@ def _continued(track: Track, edge: np.ndarray, tick: int, bounds: tuple[int, int
     or at any other angle), and is taken to come back at the velocity it went, its track starting again from this
     edge (a mean over edges on both sides of the turn says it barely moves); the edge's shift says which axes it moved
     the box along."""
-    position = track.position + shift
+    position, along = track.position + shift, np.abs(shift) >= 0.5
     if track.velocity is not None and float(np.dot(shift, track.velocity)) < 0:
-        return _started(edge, tick, bounds, position, -track.velocity, track.min_speed, shift)
+        return _started(edge, tick, bounds, position, -track.velocity, track.min_speed, along)
     seen = (track.seen + ((tick, position),))[-HISTORY:]
     velocity = np.round((seen[-1][1] - seen[0][1]) / (seen[-1][0] - seen[0][0]), 9)  # a cell a tick stays 1
-    along = np.abs(shift) >= 0.5
     axis_moves = tuple((moves + ((tick, float(place)),))[-HISTORY:] if moved else moves
                        for moves, moved, place in zip(track.axis_moves, along, position))
     offset = np.rint(shift).astype(np.int64)
