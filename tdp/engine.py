@@ -204,12 +204,19 @@ CUT_PARTS = 4096
 #: sealed in a pocket of 62-405 cells 7-32 %, and cost pockets of thousands of cells 1-12 % (it looks in vain); four
 #: times as much cost a 1024² map's pocket of 13,000 cells 1.5x.
 CUT_SHARE = 0.5
-_HOLDS_SOURCE, _CLOSED = 1, 2  # the flags of a part of ``cut_off``
+#: Cells a mend's look takes for each edited cell before it pauses the parts beside no cluster whose sides are apart
+#: (``pause_joined``: a few passes over the edits a check). `python -m benchmarks.ab`: noise on random 1024² 0.57-0.59x,
+#: boxes there 0.67-0.70x; checked from the look's start (no such floor), a pocket sealed 1.11-1.51x on random maps.
+PAUSE_AFTER = 8
+_APART_SIDE = CUT_PARTS  # no part's index: a cluster's open sides in two parts or more (``_cut_rules``)
+#: The flags of a part of ``cut_off``: it holds the source; it ran dry (closed); its clusters' sides are all one part
+#: (paused: its cells are dropped, not looked at); it dropped cells (truncated: it never reads as closed).
+_HOLDS_SOURCE, _CLOSED, _PAUSED, _TRUNCATED = 1, 2, 4, 8
 _PARENT, _WAITING, _FLAGS, _PART_INTS = range(4)  # a part's ints in ``cut_off``'s trail
 #: A look's ints (``_cut_rules``): cells looked at, queued, parts live, whether crowded, whether the source is blocked,
 #: the part holding the source closed (-1: none), whether parts are apart, the cells looked at at the next check of
-#: the clusters' sides, the clusters.
-_LOOKED, _QUEUED, _LIVE, _CROWDED, _LOST, _SEALED, _CUT, _CHECK_AT, _CLUSTERS = range(9)
+#: the clusters' sides, the clusters, the parts it started with, the cells it dropped (paused parts').
+_LOOKED, _QUEUED, _LIVE, _CROWDED, _LOST, _SEALED, _CUT, _CHECK_AT, _CLUSTERS, _PARTS, _DROPPED = range(11)
 #: A raise's ints (``_raise_rules``): its queue's next entry and end, the cells raised, the cells waiting to be looked
 #: at again, the cells raised since they were last looked at.
 _NEXT, _END, _RAISED, _DEFERRING, _ROSE = range(5)
@@ -1742,7 +1749,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         """Part ``other`` joins ``part``: its cells waiting and its flags."""
         trail[0, at(other, _PARENT)] = part
         trail[0, at(part, _WAITING)] += trail[0, at(other, _WAITING)]
-        trail[0, at(part, _FLAGS)] |= trail[0, at(other, _FLAGS)]
+        trail[0, at(part, _FLAGS)] = (trail[0, at(part, _FLAGS)] | trail[0, at(other, _FLAGS)]) & ~_PAUSED
 
     @ti.func
     def edited(pen: ti.template(), cells: ti.template(), penalties: ti.template(), k, width):
@@ -1885,6 +1892,46 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return ok
 
     @ti.func
+    def pause_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width,
+                     parts):
+        """Whether the edits cut nothing off the source but pockets (``joined``), every cluster's open sides checked;
+        the open parts beside no cluster whose sides are apart paused (``_PAUSED``: flooding them decides nothing -
+        edits all over a map leave a part round each, which flooded on until the slowest cluster's sides met)."""
+        pockets_joined(trail, pen, cells, penalties, width)
+        for k in range(cells.shape[0]):  # each cluster's one open side, or _APART_SIDE
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                top = cluster(trail, c)
+                side = -trail[2, top] - _ROOT - 1
+                for m in ti.static(steps):
+                    part = beside(trail, c, width, m.dr, m.dc)
+                    if part >= 0 and not closed(trail, part) and part != side:
+                        side = ti.select(side < 0, part, _APART_SIDE)
+                trail[2, top] = -(_ROOT + side + 1)
+        for part in range(parts):
+            if trail[0, at(part, _PARENT)] == part and not closed(trail, part):
+                trail[0, at(part, _FLAGS)] |= _PAUSED
+        apart = False
+        for k in range(cells.shape[0]):
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:  # (Taichi's ``and`` evaluates both sides: cluster(-1) would never return)
+                if -trail[2, cluster(trail, c)] - _ROOT - 1 == _APART_SIDE:
+                    apart = True
+                    for m in ti.static(steps):
+                        part = beside(trail, c, width, m.dr, m.dc)
+                        if part >= 0:
+                            trail[0, at(part, _FLAGS)] &= ~_PAUSED
+        for k in range(cells.shape[0]):  # the clusters' sides forgotten, the pockets' cells waiting back at 0
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                trail[2, cluster(trail, c)] = _EDITED
+                for m in ti.static(steps):
+                    part = beside(trail, c, width, m.dr, m.dc)
+                    if part >= 0 and closed(trail, part):
+                        trail[0, at(part, _WAITING)] = 0
+        return not apart
+
+    @ti.func
     def cut_start(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
                   cells: ti.template(), penalties: ti.template(), cap):
         """The look's start: each free cell beside a cell the edits blocked queued as a part of its own (at most
@@ -1909,17 +1956,17 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                             tail = visit(trail, live, i * width + j, tail, source)
                             live += 1
                         crowded |= live == most
-        # parts apart may yet be the ways round clusters of blocked cells far apart, each joined round (``joined``):
-        # checked once there are no more parts than clusters, each time the cells looked at have doubled
+        # parts apart may yet be the ways round clusters of blocked cells far apart, each joined round (``joined``,
+        # ``pause_joined``): checked each time the cells looked at have doubled (``looked_at``)
         return ti.Vector([0, tail, live, ti.select(crowded, 1, 0), ti.select(lost, 1, 0), -1,
-                          ti.select(live > 1, 1, 0), clusters, clusters])
+                          ti.select(live > 1, 1, 0), clusters, clusters, live, 0])
 
     @ti.func
     def cutting(look, budget):
         """Whether the look goes on: not crowded, the source not blocked, parts apart, none holding the source
         closed, cells queued, fewer than ``budget`` looked at (the mend stops it too once its race has finished)."""
         return (look[_CROWDED] == 0 and look[_LOST] == 0 and look[_CUT] == 1 and look[_SEALED] < 0
-                and look[_LOOKED] < look[_QUEUED] and look[_LOOKED] < budget)
+                and look[_LOOKED] < look[_QUEUED] and look[_LOOKED] - look[_DROPPED] < budget)
 
     @ti.func
     def cut_step(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
@@ -1929,13 +1976,25 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         dry is cut off from every other - the whole of what it joins (a part holding the source so: ``_SEALED``).
         The look stops (``cutting``) once one part is left (every other merged into it or closed), or once the
         sides of each cluster of blocked cells are one part (``joined``: clusters far apart, as boxes or noise all
-        over a map, leave a part round each that would merge with the others only after most of the map). Returns
-        the look's ints."""
+        over a map, leave a part round each that would merge with the others only after most of the map). A paused
+        part's cells (``pause_joined``) are dropped, not looked at. Returns the look's ints."""
         width = values.shape[2]
-        source = header[SOURCE_ROW] * width + header[SOURCE_COL]
         c = trail[1, look[_LOOKED]]
         look[_LOOKED] += 1
         part = root(trail, part_of(trail, c))
+        if trail[0, at(part, _FLAGS)] & _PAUSED:
+            trail[0, at(part, _FLAGS)] |= _TRUNCATED
+            trail[0, at(part, _WAITING)] -= 1
+            look[_DROPPED] += 1
+        else:
+            look = looked_at(trail, pen, header, cells, penalties, width, look, c, part)
+        return look
+
+    @ti.func
+    def looked_at(trail: ti.template(), pen: ti.template(), header: ti.template(), cells: ti.template(),
+                  penalties: ti.template(), width, look, c, part):
+        """``cut_step``'s cell ``c`` of ``part`` (a root, not paused) looked at. Returns the look's ints."""
+        source = header[SOURCE_ROW] * width + header[SOURCE_COL]
         i, j = _cell_at(c, width)
         tail, live = look[_QUEUED], look[_LIVE]
         for m in ti.static(steps):
@@ -1950,15 +2009,24 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                         merge(trail, part, other)
                         live -= 1
         trail[0, at(part, _WAITING)] -= 1
-        if trail[0, at(part, _WAITING)] == 0:  # all it joins looked at: closed
+        if trail[0, at(part, _WAITING)] == 0 and trail[0, at(part, _FLAGS)] & _TRUNCATED == 0:  # all it joins looked
             trail[0, at(part, _FLAGS)] |= _CLOSED
             live -= 1
             if trail[0, at(part, _FLAGS)] & _HOLDS_SOURCE:
                 look[_SEALED] = part
         cut = live > 1
-        if cut and live <= look[_CLUSTERS] and look[_LOOKED] >= look[_CHECK_AT] and look[_SEALED] < 0:
-            cut = not joined(trail, pen, cells, penalties, width)
-            look[_CHECK_AT] = 2 * look[_LOOKED]
+        # each check of the clusters' sides once the cells looked at have doubled: ``joined`` (it stops at the first
+        # blocked cell whose sides are apart) once there are no more parts than clusters; before that, where there
+        # are clusters apart, ``pause_joined`` (a few passes over the edits) once the look has taken PAUSE_AFTER
+        # cells an edit
+        clusters = look[_CLUSTERS]
+        if cut and look[_LOOKED] >= look[_CHECK_AT] and look[_SEALED] < 0:
+            if live <= clusters:
+                cut = not joined(trail, pen, cells, penalties, width)
+                look[_CHECK_AT] = 2 * look[_LOOKED]
+            elif clusters > 1 and look[_LOOKED] >= PAUSE_AFTER * cells.shape[0]:
+                cut = not pause_joined(trail, pen, cells, penalties, width, look[_PARTS])
+                look[_CHECK_AT] = 2 * look[_LOOKED]
         look[_QUEUED], look[_LIVE], look[_CUT] = tail, live, ti.select(cut, 1, 0)
         return look
 
@@ -1969,9 +2037,10 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         (none if they blocked the source); else the parts closed without the source - pockets sealed off - have
         their cells set to the cap at once (no raise). If every part merged into one, the edits cut nothing: a way
         round each blocked cell joins its neighbours, so a route through it has a way round too. The trail's marks
-        are cleared. Returns (the cells the source's closed part holds, -1 if none; cells looked at; 1 if it stopped
-        short with parts apart - the source may lie in one closed - else 0). The verdict only chooses how the mend
-        goes on (a race or none): the raise that follows finds every cell that must rise either way."""
+        are cleared. Returns (the cells the source's closed part holds, -1 if none; cells looked at, less those
+        dropped; 1 if it stopped short with parts apart - the source may lie in one closed - else 0). The verdict
+        only chooses how the mend goes on (a race or none): the raise that follows finds every cell that must rise
+        either way."""
         width = values.shape[2]
         cut = look[_CUT] == 1
         if cut and look[_CROWDED] == 0 and look[_LOST] == 0 and look[_SEALED] < 0 and look[_LIVE] <= look[_CLUSTERS]:
@@ -1987,7 +2056,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             elif flags & _CLOSED:
                 i, j = _cell_at(c, width)
                 values[0, i, j] = cap
-        return ti.Vector([reached, look[_LOOKED], ti.select(look[_CROWDED] == 1 or cut, 1, 0)])
+        return ti.Vector([reached, look[_LOOKED] - look[_DROPPED], ti.select(look[_CROWDED] == 1 or cut, 1, 0)])
 
     return SimpleNamespace(cut_start=cut_start, cutting=cutting, cut_step=cut_step, cut_verdict=cut_verdict)
 
@@ -2718,7 +2787,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                 spent = _mend_work(looked[1], rising[_RAISED])  # the look's cells once it ended, the raise's
                 if phase == _LOOKING and cutting(look, run[_MEND.looks]) and not racing.over(spare, race):
                     look = cut_step(values, pen, header, trail, cells, penalties, look)
-                    most, seeding = racing.paced(race, look[_LOOKED])
+                    most, seeding = racing.paced(race, look[_LOOKED] - look[_DROPPED])
                 elif phase == _LOOKING:
                     looked = cut_verdict(values, pen, trail, cells, penalties, cap, look)
                     raising = not (_doomed(looked[0], restart, fills) or racing.over(spare, race))
