@@ -1787,8 +1787,9 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def closed(trail: ti.template(), part):
-        """Whether ``part`` (a root) ran dry: all it joins looked at."""
-        return trail[0, at(part, _FLAGS)] & _CLOSED != 0
+        """Whether ``part`` (a root) ran dry: all it joins looked at. Read at part 0 for part -1 (no part): Taichi's
+        ``and`` evaluates both sides, so ``part >= 0 and closed(trail, part)`` calls it with -1 too."""
+        return trail[0, at(ti.max(part, 0), _FLAGS)] & _CLOSED != 0
 
     @ti.func
     def beside(trail: ti.template(), c, width, dr, dc):
@@ -1813,8 +1814,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         roots = 0
         for k in range(cells.shape[0]):
             c = edited(pen, cells, penalties, k, width)
-            if c >= 0 and trail[2, c] <= -_ROOT:
-                roots += 1
+            if c >= 0:  # (not ``and``: Taichi would read row 2 at -1 too)
+                roots += ti.select(trail[2, c] <= -_ROOT, 1, 0)
         return roots
 
     @ti.func
