@@ -1873,6 +1873,20 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return not apart
 
     @ti.func
+    def sides_forgotten(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
+                        width):
+        """After a check of the clusters' sides: each cluster's side forgotten, the pockets' cells waiting (which
+        ``pockets_joined`` lent to the clusters beside them) back at 0."""
+        for k in range(cells.shape[0]):
+            c = edited(pen, cells, penalties, k, width)
+            if c >= 0:
+                trail[2, cluster(trail, c)] = _EDITED
+                for m in ti.static(steps):
+                    part = beside(trail, c, width, m.dr, m.dc)
+                    if part >= 0 and closed(trail, part):
+                        trail[0, at(part, _WAITING)] = 0
+
+    @ti.func
     def joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(), width):
         """Whether the edits cut nothing off the source but pockets (closed parts, set to the cap): the free cells
         in open parts beside the blocked cells of each cluster (``clustered``, then ``pockets_joined``) lie in one
@@ -1883,13 +1897,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         if ok:
             pockets_joined(trail, pen, cells, penalties, width)
             ok = sides_joined(trail, pen, cells, penalties, width, True)
-            for k in range(cells.shape[0]):  # the pockets' cells waiting back at 0
-                c = edited(pen, cells, penalties, k, width)
-                if c >= 0:
-                    for m in ti.static(steps):
-                        part = beside(trail, c, width, m.dr, m.dc)
-                        if part >= 0 and closed(trail, part):
-                            trail[0, at(part, _WAITING)] = 0
+            sides_forgotten(trail, pen, cells, penalties, width)
         return ok
 
     @ti.func
@@ -1922,14 +1930,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                         part = beside(trail, c, width, m.dr, m.dc)
                         if part >= 0:
                             trail[0, at(part, _FLAGS)] &= ~_PAUSED
-        for k in range(cells.shape[0]):  # the clusters' sides forgotten, the pockets' cells waiting back at 0
-            c = edited(pen, cells, penalties, k, width)
-            if c >= 0:
-                trail[2, cluster(trail, c)] = _EDITED
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
-                    if part >= 0 and closed(trail, part):
-                        trail[0, at(part, _WAITING)] = 0
+        sides_forgotten(trail, pen, cells, penalties, width)
         return not apart
 
     @ti.func

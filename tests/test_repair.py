@@ -577,14 +577,19 @@ def look_outcome(runs: list) -> tuple:
     return outcome, outcome.spent - engine_module.mend_work(0, outcome.raised) - outcome.lowered
 
 
+def look_unhurried(monkeypatch) -> None:
+    """A mend's look not cut short by the reset's price, its race paced a cell for a cell and given no head start."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)
+    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
+    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+
+
 def test_a_look_at_blocked_cells_far_apart_ends_once_each_ones_sides_are_joined(monkeypatch):
     """Blocked cells far apart (noise all over a map), one of them sealing a pocket of one cell: the parts round
     them would merge only after flooding most of the map, but the look ends once the free cells beside each blocked
     cell are one part - the pocket set to the cap, the edits found to cut nothing else off, so no race runs beside
     the raise - after a small share of the map. The repair equals a fresh converge."""
-    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)  # the look is not cut short by the reset's price
-    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
-    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+    look_unhurried(monkeypatch)
     rng = np.random.default_rng(21)
     occupied = rng.random((120, 120)) < 0.1
     occupied[100:103, 20:23] = True  # a dead end of one cell, (101, 21), whose mouth (101, 22) is blocked
@@ -612,9 +617,7 @@ def test_a_look_at_boxes_far_apart_ends_once_each_box_is_joined_round_and_a_thic
     look ends once each box's have - no race beside the raise. A ring two cells thick round the goal is a cluster
     too, each of its cells with free cells on one side only: its two sides are apart, and the race that follows
     restarts on the pocket. Both repairs equal a fresh converge."""
-    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)
-    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
-    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+    look_unhurried(monkeypatch)
     rng = np.random.default_rng(22)
     occupied = rng.random((120, 120)) < 0.05
     goal = (60, 60)
@@ -647,9 +650,7 @@ def test_a_look_pauses_the_parts_round_blocked_cells_whose_sides_have_met(monkey
     cells) and floods on only round the others: it takes under 7 % of the free cells (0.048-0.049 here), where a
     look that flooded every part until the slowest met took 9.6-18 %. The pauses read nothing as closed (a paused
     part never closes), and the repair equals a fresh converge."""
-    monkeypatch.setattr(engine_module, "CUT_SHARE", 1e9)
-    monkeypatch.setattr(engine_module, "RACE_LEAD", 1)
-    monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
+    look_unhurried(monkeypatch)
     rng = np.random.default_rng(seed)
     occupied = rng.random((160, 160)) < 0.2
     goal = (80, 80)
