@@ -1848,12 +1848,12 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
 
     @ti.func
     def sides_joined(trail: ti.template(), pen: ti.template(), cells: ti.template(), penalties: ti.template(),
-                     width, per_cluster):
+                     width, per_cluster, whole):
         """Whether the free cells beside each blocked cell that lie in open parts (not closed) are all in one part -
-        ``per_cluster``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root. It stops
-        at the first blocked cell whose sides are apart."""
+        ``per_cluster``, one part for each cluster (``clustered``, ``pockets_joined``), kept in its root
+        (_APART_SIDE once two). It stops at the first blocked cell whose sides are apart, unless ``whole``."""
         apart, k = False, 0
-        while k < cells.shape[0] and not apart:
+        while k < cells.shape[0] and (whole or not apart):
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 side, top = -1, c
@@ -1866,7 +1866,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                         if side < 0:
                             side = part
                         elif part != side:
-                            apart = True
+                            apart, side = True, _APART_SIDE
                 if per_cluster:
                     trail[2, top] = -(_ROOT + side + 1)
             k += 1
@@ -1893,10 +1893,10 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         part. A route through blocked cells enters and leaves a run of them a step apart - one cluster - by free
         cells beside it, joined round it; a route into a pocket leaves it by a blocked cell beside it, whose cluster
         is the pocket's. Each blocked cell's own sides first: most cuts show there, at once."""
-        ok = sides_joined(trail, pen, cells, penalties, width, False)
+        ok = sides_joined(trail, pen, cells, penalties, width, False, False)
         if ok:
             pockets_joined(trail, pen, cells, penalties, width)
-            ok = sides_joined(trail, pen, cells, penalties, width, True)
+            ok = sides_joined(trail, pen, cells, penalties, width, True, False)
             sides_forgotten(trail, pen, cells, penalties, width)
         return ok
 
@@ -1907,31 +1907,20 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         the open parts beside no cluster whose sides are apart paused (``_PAUSED``: flooding them decides nothing -
         edits all over a map leave a part round each, which flooded on until the slowest cluster's sides met)."""
         pockets_joined(trail, pen, cells, penalties, width)
-        for k in range(cells.shape[0]):  # each cluster's one open side, or _APART_SIDE
-            c = edited(pen, cells, penalties, k, width)
-            if c >= 0:
-                top = cluster(trail, c)
-                side = -trail[2, top] - _ROOT - 1
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
-                    if part >= 0 and not closed(trail, part) and part != side:
-                        side = ti.select(side < 0, part, _APART_SIDE)
-                trail[2, top] = -(_ROOT + side + 1)
+        ok = sides_joined(trail, pen, cells, penalties, width, True, True)
         for part in range(parts):
             if trail[0, at(part, _PARENT)] == part and not closed(trail, part):
                 trail[0, at(part, _FLAGS)] |= _PAUSED
-        apart = False
         for k in range(cells.shape[0]):
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:  # (Taichi's ``and`` evaluates both sides: cluster(-1) would never return)
                 if -trail[2, cluster(trail, c)] - _ROOT - 1 == _APART_SIDE:
-                    apart = True
                     for m in ti.static(steps):
                         part = beside(trail, c, width, m.dr, m.dc)
                         if part >= 0:
                             trail[0, at(part, _FLAGS)] &= ~_PAUSED
         sides_forgotten(trail, pen, cells, penalties, width)
-        return not apart
+        return ok
 
     @ti.func
     def cut_start(values: ti.template(), pen: ti.template(), header: ti.template(), trail: ti.template(),
