@@ -1715,6 +1715,14 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
     them: nothing is taken off), row 0 holds each part's ints (``_PART_INTS``: union-find parent, cells waiting,
     flags); the look's own ints are a vector (``_LOOKED`` ...)."""
     blocked, steps = cell.blocked, cell.steps
+    step_rows, step_cols = tuple(m.dr for m in steps), tuple(m.dc for m in steps)
+
+    @ti.func
+    def step_of(s):
+        """(rows, columns) of step ``s`` of ``steps``, ``s`` known at run time: the checks over every edit loop over
+        the steps at run time, so that each inlines its body once where a static loop inlined it once a step (Taichi's
+        whole-kernel CSE takes time that grows faster than the kernel: ARCHITECTURE §7)."""
+        return ti.Vector([ti.Vector(step_rows)[s], ti.Vector(step_cols)[s]])
 
     @ti.func
     def at(part, field):
@@ -1792,10 +1800,11 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return trail[0, at(ti.max(part, 0), _FLAGS)] & _CLOSED != 0
 
     @ti.func
-    def beside(trail: ti.template(), c, width, dr, dc):
-        """The root of the part of the cell a step (dr, dc) from padded cell ``c`` (-1: none - blocked, or not
-        looked at: only free cells join parts)."""
-        found = part_of(trail, c + dr * width + dc)
+    def beside(trail: ti.template(), c, width, s):
+        """The root of the part of the cell step ``s`` (``step_of``) from padded cell ``c`` (-1: none - blocked, or
+        not looked at: only free cells join parts)."""
+        step = step_of(s)
+        found = part_of(trail, c + step[0] * width + step[1])
         if found >= 0:
             found = root(trail, found)
         return found
@@ -1808,9 +1817,11 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         for k in range(cells.shape[0]):
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
-                for m in ti.static(steps):
-                    if trail[2, c + m.dr * width + m.dc] < 0:
-                        unite(trail, c, c + m.dr * width + m.dc)
+                for s in range(ti.static(len(steps))):
+                    step = step_of(s)
+                    there = c + step[0] * width + step[1]
+                    if trail[2, there] < 0:
+                        unite(trail, c, there)
         roots = 0
         for k in range(cells.shape[0]):
             c = edited(pen, cells, penalties, k, width)
@@ -1827,8 +1838,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 first = -1
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
+                for s in range(ti.static(len(steps))):
+                    part = beside(trail, c, width, s)
                     if part >= 0 and closed(trail, part):
                         if first < 0:
                             first = part
@@ -1838,8 +1849,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 trail[2, cluster(trail, c)] = _EDITED
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
+                for s in range(ti.static(len(steps))):
+                    part = beside(trail, c, width, s)
                     if part >= 0 and closed(trail, part):
                         if trail[0, at(part, _WAITING)] == 0:
                             trail[0, at(part, _WAITING)] = c + 1
@@ -1860,8 +1871,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 if per_cluster:
                     top = cluster(trail, c)
                     side = -trail[2, top] - _ROOT - 1
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
+                for s in range(ti.static(len(steps))):
+                    part = beside(trail, c, width, s)
                     if part >= 0 and not closed(trail, part):
                         if side < 0:
                             side = part
@@ -1881,8 +1892,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 trail[2, cluster(trail, c)] = _EDITED
-                for m in ti.static(steps):
-                    part = beside(trail, c, width, m.dr, m.dc)
+                for s in range(ti.static(len(steps))):
+                    part = beside(trail, c, width, s)
                     if part >= 0 and closed(trail, part):
                         trail[0, at(part, _WAITING)] = 0
 
@@ -1915,8 +1926,8 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:  # (Taichi's ``and`` evaluates both sides: cluster(-1) would never return)
                 if -trail[2, cluster(trail, c)] - _ROOT - 1 == _APART_SIDE:
-                    for m in ti.static(steps):
-                        part = beside(trail, c, width, m.dr, m.dc)
+                    for s in range(ti.static(len(steps))):
+                        part = beside(trail, c, width, s)
                         if part >= 0:
                             trail[0, at(part, _FLAGS)] &= ~_PAUSED
         sides_forgotten(trail, pen, cells, penalties, width)
@@ -1938,8 +1949,9 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         live, tail, crowded = 0, 0, False
         for k in range(cells.shape[0]):
             if penalties[k] > MAX_COST:
-                for m in ti.static(steps):
-                    i, j = cells[k, 0] + PAD + m.dr, cells[k, 1] + PAD + m.dc
+                for s in range(ti.static(len(steps))):
+                    step = step_of(s)
+                    i, j = cells[k, 0] + PAD + step[0], cells[k, 1] + PAD + step[1]
                     if part_of(trail, i * width + j) < 0 and not blocked(pen[0, i, j]) and values[0, i, j] < cap:
                         if live < most:
                             trail[0, at(live, _PARENT)], trail[0, at(live, _FLAGS)] = live, 0
