@@ -1725,6 +1725,12 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
         return ti.Vector([ti.Vector(step_rows)[s], ti.Vector(step_cols)[s]])
 
     @ti.func
+    def stepped(c, width, s):
+        """The padded cell (row-major) step ``s`` (``step_of``) from padded cell ``c``."""
+        step = step_of(s)
+        return c + step[0] * width + step[1]
+
+    @ti.func
     def at(part, field):
         """Where ``field`` of ``part`` lies in row 0 of the trail."""
         return part * _PART_INTS + field
@@ -1803,8 +1809,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
     def beside(trail: ti.template(), c, width, s):
         """The root of the part of the cell step ``s`` (``step_of``) from padded cell ``c`` (-1: none - blocked, or
         not looked at: only free cells join parts)."""
-        step = step_of(s)
-        found = part_of(trail, c + step[0] * width + step[1])
+        found = part_of(trail, stepped(c, width, s))
         if found >= 0:
             found = root(trail, found)
         return found
@@ -1818,8 +1823,7 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
             c = edited(pen, cells, penalties, k, width)
             if c >= 0:
                 for s in range(ti.static(len(steps))):
-                    step = step_of(s)
-                    there = c + step[0] * width + step[1]
+                    there = stepped(c, width, s)
                     if trail[2, there] < 0:
                         unite(trail, c, there)
         roots = 0
