@@ -3197,9 +3197,13 @@ class _LayerArrays:
 
     def move_source(self, source: tuple[int, int]) -> None:
         """Hold ``source`` (padded layer coordinates) at 0 from the next iteration on (the values that depended on
-        the old one must rise)."""
+        the old one must rise). Work a converge left pending is dropped: it was for the old source, and finishing it
+        by settling (as :meth:`iterate` finishes pending work) raised the cells cut off from the new one a step a
+        round for ever where the cap is inf; the next converge restarts (``Engine.converge``), and iterations go on
+        from the values as they are."""
         self.header[SOURCE_ROW], self.header[SOURCE_COL] = int(source[0]), int(source[1])
         self.successors, self.edits = {}, None
+        self.pending = False
 
     def activate_all(self) -> None:
         """Every tile active for the next iteration or round, with no key (due at once)."""

@@ -139,7 +139,8 @@ class DistanceField:
     @property
     def pending(self) -> bool:
         """Whether the last :meth:`converge` left work for later (it stopped at its focus or at ``max_rounds``); the
-        next :meth:`converge` goes on with it, and :meth:`step` finishes it before iterating."""
+        next :meth:`converge` goes on with it, and :meth:`step` finishes it before iterating. :meth:`set_goal` drops
+        it: the next converge starts again, and steps iterate from the values as they are."""
         return self._engine.pending()
 
     def reset(self) -> None:

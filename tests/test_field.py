@@ -1,5 +1,8 @@
 """DistanceField against scipy's Dijkstra on the same graph, and the DP's synchronous semantics."""
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -267,3 +270,28 @@ def test_literal_two_synchronous_iterations():
         [INF, INF, 2, INF, INF],
     ]
     np.testing.assert_array_equal(field.distances(), np.array(expected, np.float32))
+
+
+def test_a_goal_moved_after_a_converge_cut_short_steps_and_then_converges_exactly():
+    """A converge cut short by ``max_rounds`` leaves work pending; the goal then moves to a cell that cannot reach
+    much of what the old goal reached (a map with 40 % obstacles). step() used to finish the old goal's pending work
+    by settling, which raised the cells cut off from the new goal a step a round for ever (the cap inf): the process
+    hung. The goal move drops that work now: the step returns, and a converge equals a fresh field's. Run in a
+    process of its own, so that a hang fails the test instead of the suite."""
+    script = (
+        "import numpy as np, tdp\n"
+        "occupied = np.random.default_rng(1).random((51, 16)) < 0.4\n"
+        "occupied[36, 1] = occupied[15, 15] = False\n"
+        "field = tdp.DistanceField(tdp.GridMap(occupied), (36, 1))\n"
+        "field.converge(max_rounds=1)\n"
+        "assert field.pending\n"
+        "field.set_goal((15, 15))\n"
+        "assert not field.pending\n"
+        "field.step(1)\n"
+        "field.converge()\n"
+        "fresh = tdp.DistanceField(tdp.GridMap(occupied), (15, 15))\n"
+        "fresh.converge()\n"
+        "assert np.array_equal(field.distances(), fresh.distances())\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=240,
+                          cwd=Path(__file__).resolve().parents[1])
+    assert done.returncode == 0, done.stderr[-2000:]
