@@ -208,6 +208,13 @@ CUT_SHARE = 0.5
 #: (``pause_joined``: a few passes over the edits a check). `python -m benchmarks.ab`: noise on random 1024² 0.57-0.59x,
 #: boxes there 0.67-0.70x; checked from the look's start (no such floor), a pocket sealed 1.11-1.51x on random maps.
 PAUSE_AFTER = 8
+#: Where the look stops short with parts apart, the outline of the source's part (``_cut_rules``' ``outlined``) is
+#: followed for at most 1 / OUTLINE_SHARE of a restart's price in cracks. On a maze a crack costs about a quarter of a
+#: cell a search takes (a turn every few cracks: 52,000 cracks added 0.8 ms to a box's 2.4 ms repair on the 1-cell
+#: maze 512²), so an outline that does not close in time - a maze's or a dense map's, as long as the cells it encloses
+#: - costs a mend about 1 % of a restart, where one followed as far as the mend's budget made boxes and walls on mazes
+#: 1.2-1.7x dearer (``benchmarks.ab``); a goal sealed in a ring has an outline of a few thousand cracks.
+OUTLINE_SHARE = 32
 _APART_SIDE = CUT_PARTS  # no part's index: a cluster's open sides in two parts or more (``_cut_rules``)
 #: The flags of a part of ``cut_off``: it holds the source; it ran dry (closed); its clusters' sides are all one part
 #: (paused: its cells are dropped, not looked at); it dropped cells (truncated: it never reads as closed).
@@ -377,8 +384,10 @@ class _MendResult(NamedTuple):
     search takes (the race's apart), the cells its race took as the mend ran and its head start (``race_head``),
     whether it gave up for a restart (the race finished first, a restart cost less than the rest of the mend, or its
     look and raise passed the budget), the cells its lowering took - having given up, its race's search took in
-    all (the buckets and the frontier then the race's) -, and whether its race started from the cells the edits left
-    as they were (``seed_bound``: the spare buffer then holds them)."""
+    all (the buckets and the frontier then the race's) -, whether its race started from the cells the edits left
+    as they were (``seed_bound``: the spare buffer then holds them), and the most cells the source's part can hold
+    by its outline, where the look stopped short and the outline closed within the mend's budget (-1: none;
+    ``_cut_rules``' ``outlined``)."""
 
     buckets: int
     frontier: int
@@ -390,6 +399,7 @@ class _MendResult(NamedTuple):
     gave_up: int
     lowered: int
     seeded: int
+    outlined: int
 
 
 class _PaintRun(NamedTuple):
@@ -2065,7 +2075,61 @@ def _cut_rules(cell: SimpleNamespace) -> SimpleNamespace:
                 values[0, i, j] = cap
         return ti.Vector([reached, look[_LOOKED] - look[_DROPPED], ti.select(look[_CROWDED] == 1 or cut, 1, 0)])
 
-    return SimpleNamespace(cut_start=cut_start, cutting=cutting, cut_step=cut_step, cut_verdict=cut_verdict)
+    @ti.func
+    def contour(pen: ti.template(), row, line, most):
+        """Follow the outline of a part of the free cells (4-connected: ``outlined``) along the cracks between its
+        cells and blocked ones, a crack at a time with the free cell on the right, from the corner (``row``,
+        ``line``) southwards - the crack between free cell (row, line - 1) and blocked (row, line) - until it is back
+        (or ``most`` cracks): at each corner it turns right where the cell ahead on the right is blocked, goes on
+        where only the one ahead on the left is, else turns left. Returns (twice the area it encloses - positive
+        round a part, negative round a hole in one -, the cracks followed, the least line past ``line`` where it
+        crosses row ``row`` (_NEVER if none), whether it closed)."""
+        rows, lines = ti.Vector([0, 1, 0, -1]), ti.Vector([1, 0, -1, 0])  # east, south, west, north
+        right_rows, right_cols = ti.Vector([0, 0, -1, -1]), ti.Vector([0, -1, -1, 0])  # the cell ahead on the right
+        r, x, d, area, taken, exit_line, closed = row, line, 1, ti.i64(0), 0, _NEVER, False
+        while not closed and taken < most:
+            after_r, after_x = r + rows[d], x + lines[d]
+            area += ti.i64(x) * after_r - ti.i64(after_x) * r
+            if d % 2 == 1 and ti.min(r, after_r) == row and x > line:
+                exit_line = ti.min(exit_line, x)
+            r, x = after_r, after_x
+            taken += 1
+            left = (d + 3) % 4
+            if blocked(pen[0, r + right_rows[d], x + right_cols[d]]):
+                d = (d + 1) % 4
+            elif not blocked(pen[0, r + right_rows[left], x + right_cols[left]]):
+                d = left
+            closed = r == row and x == line and d == 1
+        return area, taken, exit_line, closed
+
+    @ti.func
+    def outlined(pen: ti.template(), header: ti.template(), most):
+        """An upper bound on the free cells of the source's part, in at most ``most`` steps (-1: none found, or a
+        stencil whose steps are not the four straight moves - moves across corners join parts the outline does not
+        follow): from the source eastwards to the first blocked cell, then its outline (``contour``); round a hole
+        (the blocked cell an island in the part) on from where the outline crosses the row again, past the island;
+        round the part, the cells it encloses. Its price is the outline's length, where telling the part's cells
+        takes its area: a goal sealed in a room is known at once (``restart_is_cheaper``)."""
+        bound = -1
+        if ti.static(len(steps) == 4):
+            i, j = header[SOURCE_ROW], header[SOURCE_COL]
+            spent, going = 0, not blocked(pen[0, i, j])
+            while going and spent < most:
+                while not blocked(pen[0, i, j + 1]):
+                    j += 1
+                    spent += 1
+                area, taken, exit_line, closed = contour(pen, i, j + 1, most - spent)
+                spent += taken
+                if not closed or (area < 0 and exit_line == _NEVER):
+                    going = False
+                elif area > 0:
+                    bound, going = ti.i32(area // 2), False
+                else:
+                    j = exit_line
+        return bound
+
+    return SimpleNamespace(cut_start=cut_start, cutting=cutting, cut_step=cut_step, cut_verdict=cut_verdict,
+                           outlined=outlined)
 
 
 @ti.func
@@ -2105,7 +2169,9 @@ def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
     """Whether a source that now reaches ``reached`` cells (-1: not counted) lost so many of the cells the last search
     reached (a restart's price ``restart``, in cells a search takes, less the reset's ``fills``) that raising them
     all (RAISE_COST each) costs a mend more than a restart, which searches the cells it reaches: a goal sealed in a
-    pocket. A pure rule, compiled into the mend as ``_doomed``."""
+    pocket. True for a count holds for every smaller one, so ``reached`` may be a bound from above (the outline's,
+    ``_cut_rules``' ``outlined``), and a count from below (``kept``) that is not cheaper says no bound can be. A pure
+    rule, compiled into the mend as ``_doomed``."""
     return reached >= 0 and RAISE_COST * (restart - fills - reached) > reached + fills
 
 
@@ -2731,8 +2797,9 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
 
     racing = _race_rules(cell, logged=True)
     look_rules, raise_rules = _cut_rules(cell), _raise_rules(cell)
-    cut_start, cutting, cut_step, cut_verdict = (look_rules.cut_start, look_rules.cutting, look_rules.cut_step,
-                                                 look_rules.cut_verdict)
+    cut_start, cutting, cut_step, cut_verdict, outlined = (look_rules.cut_start, look_rules.cutting,
+                                                           look_rules.cut_step, look_rules.cut_verdict,
+                                                           look_rules.outlined)
     raise_start, raise_step, raise_end = raise_rules.raise_start, raise_rules.raise_step, raise_rules.raise_end
 
     @ti.func
@@ -2763,7 +2830,8 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
         ``race_links`` (3 rows): the look and the raise go a cell at a time in one loop, the race on after each
         (``advance``, in one place: each place inlines a search). If it finishes first, or the mend's work passes
         its budget, or the look finds the goal sealed in so few cells that a restart costs less
-        (``restart_is_cheaper``), the mend gives up and the race runs to its end - the restart, in the same launch,
+        (``restart_is_cheaper``) - or, stopped short, the outline of the goal's part (``outlined``) bounds them so -,
+        the mend gives up and the race runs to its end - the restart, in the same launch,
         its tiles handed over for round ``restart_tick``; else the race's cells are put back at the cap."""
         ti.loop_config(serialize=True)
         for _ in range(run[_MEND.go]):
@@ -2788,7 +2856,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             race[_LEAD] = _race_lead(least, 0, budget, run[_MEND.lead])
             look = cut_start(values, pen, header, trail, cells, penalties, cap)
             looked, rising, left = ti.Vector([0, 0, 0]), ti.Vector([0, 0, 0, 0, 0]), race
-            phase, raising, gave_up, spent = _LOOKING, False, 0, 0
+            phase, raising, gave_up, spent, bound = _LOOKING, False, 0, 0, -1
             while phase != _RAISE_OVER:  # the look, then the raise, the race going on beside them in one place
                 most, seeding = -1, False
                 spent = _mend_work(looked[1], rising[_RAISED])  # the look's cells once it ended, the raise's
@@ -2797,9 +2865,14 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     most, seeding = racing.paced(race, look[_LOOKED] - look[_DROPPED])
                 elif phase == _LOOKING:
                     looked = cut_verdict(values, pen, trail, cells, penalties, cap, look)
-                    raising = not (_doomed(looked[0], restart, fills) or racing.over(spare, race))
+                    # stopped short, and the cells the source keeps (``kept``) are few enough that a restart may yet
+                    # cost less: the most its part holds, by its outline
+                    if looked[2] == 1 and looked[0] < 0 and _doomed(kept, restart, fills):
+                        bound = outlined(pen, header, restart // OUTLINE_SHARE)
+                    most_reached = ti.select(looked[0] >= 0, looked[0], bound)
+                    raising = not (_doomed(most_reached, restart, fills) or racing.over(spare, race))
                     if raising:
-                        budget = _budget_for(budget, restart, fills, looked[0])
+                        budget = _budget_for(budget, restart, fills, most_reached)
                         # the edits cut nothing apart: the source keeps what it had, a restart costs as much
                         race[_LEAD] = 0
                         if looked[2] == 1 and looked[0] < 0:
@@ -2824,7 +2897,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
             run[_MENDED.raced], run[_MENDED.head] = left[_TAKEN], left[_HEAD]
             run[_MENDED.seeded] = ti.select(left[_FROM] == _SEEDED, 1, 0)
-            run[_MENDED.gave_up] = gave_up
+            run[_MENDED.gave_up], run[_MENDED.outlined] = gave_up, bound
             if gave_up:  # the race ran to its end: the restart, its log the search's from now on
                 racing.hand_log(race_links, race, links, heads)
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)

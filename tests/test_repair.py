@@ -584,6 +584,55 @@ def look_unhurried(monkeypatch) -> None:
     monkeypatch.setattr(engine_module, "RACE_HEAD_SHARE", 0)
 
 
+def test_a_goal_sealed_in_a_room_the_look_cannot_follow_restarts_without_a_raise(monkeypatch):
+    """A ring round the goal, its room a fifth of the map: the look (its budget half a reset) stops short with the
+    ring's sides apart, and where the mend used to raise the cells outside beside its race, the outline of the
+    goal's part - a few hundred cracks along the ring's inner side - bounds it by the room's cells, so few that a
+    restart costs less: the mend gives up before its raise, and the repair equals a fresh converge."""
+    rng = np.random.default_rng(31)
+    occupied = rng.random((200, 200)) < 0.15
+    goal = (100, 100)
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    ring = ring_round(occupied, goal, 45)
+    engine.set_cells(ring, np.ones(len(ring), bool))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    reach = reachable_by_the_stencil(engine.occupied, goal, False)
+    assert outcome.reached == -1 and reach <= outcome.outlined <= 91 * 91  # stopped short; the room's cells at most
+    assert outcome.gave_up and outcome.raised == 0 and engine.converged_by() == "search"
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(side=st.integers(12, 70), density=st.sampled_from([0.0, 0.1, 0.3, 0.45]), seed=st.integers(0, 10_000),
+       neighbourhood=st.sampled_from([4, 8, 16]), half=st.integers(2, 20))
+def test_the_outline_of_the_goals_part_bounds_the_cells_it_reaches(monkeypatch, side, density, seed, neighbourhood,
+                                                                   half):
+    """Wherever a mend's outline closes (``_MendResult.outlined``), the cells it encloses are at least the cells
+    the goal reaches after the edits - a ring round the goal and noise all over, on random maps (islands in the
+    goal's part, parts inside others' holes, the map's edge) - and the repair equals a fresh converge."""
+    monkeypatch.setattr(engine_module, "CUT_SHARE", 0)  # the look stops at once: the outline runs
+    rng = np.random.default_rng(seed)
+    occupied = rng.random((side, side)) < density
+    goal = tuple(int(v) for v in rng.integers(0, side, 2))
+    occupied[goal] = False
+    engine = Engine(occupied, goal, neighbourhood=neighbourhood)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    edit = np.concatenate([ring_round(occupied, goal, half, 1), np.argwhere(rng.random(occupied.shape) < 0.05)])
+    edit = edit[np.any(edit != goal, axis=1)]
+    engine.set_cells(edit, np.ones(len(edit), bool))
+    engine.converge()
+    if runs:
+        outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+        reach = reachable_by_the_stencil(engine.occupied, goal, False, neighbourhood)
+        assert outcome.outlined == -1 or outcome.outlined >= reach
+    assert_equal_to_a_fresh_converge(engine, dict(neighbourhood=neighbourhood))
+
+
 def test_a_look_at_blocked_cells_far_apart_ends_once_each_ones_sides_are_joined(monkeypatch):
     """Blocked cells far apart (noise all over a map), one of them sealing a pocket of one cell: the parts round
     them would merge only after flooding most of the map, but the look ends once the free cells beside each blocked
@@ -852,9 +901,10 @@ def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_it
     """With no first look to count it (its sides apart), a goal sealed in a pocket is found by the race: its search
     from the source takes every cell a BFS of the stencil reaches while the raise runs, the raise stops as soon as it
     has (one cell before, its head start - the cells nearer the source than the ring, fewer than it reaches - and its
-    lead called for fewer), and the mend gives up with the race as its restart. The same ring round a far cell: the
-    last search's log says the source keeps most of the map, more than the race could take before the mend's budget
-    runs out - no race, and the mend finishes."""
+    lead called for fewer), and the mend gives up with the race as its restart. Without corners cut the outline of
+    the goal's part finds it first (``_cut_rules``' ``outlined``): the mend gives up before its raise. The same ring
+    round a far cell: the last search's log says the source keeps most of the map, more than the race could take
+    before the mend's budget runs out - no race, and the mend finishes."""
     monkeypatch.setattr(engine_module, "CUT_SHARE", 0.0)
     lead = engine_module.RACE_LEAD
     rng = np.random.default_rng(11)
@@ -870,11 +920,13 @@ def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_it
         engine.set_cells(ring, np.ones(len(ring), bool))
         engine.converge()
         outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
-        assert engine.converged_by() == by and outcome.raised > 0
+        outlined = by == "search" and not corner_cutting
+        assert engine.converged_by() == by and (outcome.raised == 0 if outlined else outcome.raised > 0)
         if by == "search":
             reached = reachable_by_the_stencil(engine.occupied, goal, corner_cutting, neighbourhood)
-            assert outcome.gave_up and outcome.raced == outcome.lowered == reached
-            assert 0 < outcome.head < reached and outcome.head + lead * (outcome.raised - 1) < reached
+            assert outcome.gave_up and outcome.lowered == reached and outcome.raced == (0 if outlined else reached)
+            assert outcome.outlined >= reached if outlined else outcome.outlined == -1
+            assert outlined or 0 < outcome.head < reached and outcome.head + lead * (outcome.raised - 1) < reached
         else:
             assert not outcome.gave_up and outcome.raced == outcome.head == 0
         assert_equal_to_a_fresh_converge(engine, options)
@@ -907,6 +959,15 @@ def test_a_mends_work_prices_each_raised_cell_as_restart_is_cheaper_weighs_it(re
     assert engine_module.restart_is_cheaper(reached, reached + lost + fills, fills) == (work(0, lost) > reached + fills)
     assert work(reached + 1, lost) == work(reached, lost) + 1
     assert work(reached, lost + 1) == work(reached, lost) + engine_module.RAISE_COST
+
+
+@given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6))
+def test_a_restart_that_is_cheaper_for_a_count_is_cheaper_for_every_smaller_one(reached, fewer, restart, fills):
+    """``restart_is_cheaper`` falls as the count rises, so the mend may give it a bound from above (the outline's
+    cells) and skip the outline where a count from below (the cells the log says the source keeps) is not cheaper."""
+    cheaper = engine_module.restart_is_cheaper
+    assert not cheaper(reached, restart, fills) or cheaper(max(reached - fewer, 0), restart, fills)
+    assert not cheaper(-1, restart, fills)
 
 
 @given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6))
