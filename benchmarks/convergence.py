@@ -3,7 +3,8 @@
     python -m benchmarks.convergence [--quick] [--only NAME ...]
 
 Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each with
-goals at a corner, the centre and a random cell; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
+goals at a corner, the centre and a random cell; open ground of side 1024 (no obstacle: ``open_cases``), goals the
+same; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
 (``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one corridor a
 cell wide winding row by row: ``serpentine``) and rings of side 256 and 512 (concentric corridors a cell wide, a door in
 each wall between two: ``rings``), goals at a corner, the centre and a random free cell; caves of side 512 and 1024 (a
@@ -64,6 +65,9 @@ SHARED = ROOT.parent / "shared" / "data"
 NAV2 = ROOT / "benchmarks" / "data" / "nav2_maps"
 ROBOT_RADIUS_M = 0.2
 SIZES, QUICK_SIZES = [128, 192, 256, 512, 1024, 2048], [64, 128]
+#: Open ground (side): no obstacle at all - a room's or a yard's floor, the widest front a search has, every cell's
+#: route one of many of the same length.
+OPEN, QUICK_OPEN = [1024], [64]
 #: Dense random maps as well: (side, obstacle density); routes wind far more than at 20 %.
 DENSE, QUICK_DENSE = [(512, 0.3), (1024, 0.3), (512, 0.4)], [(64, 0.3)]
 #: Perfect mazes: (side, corridor width); a tile holds pieces of corridors at very different distances.
@@ -132,6 +136,13 @@ def random_cases(size: int, density: float = 0.2) -> list[tuple[str, np.ndarray,
              "random": tuple(int(v) for v in free[np.random.default_rng(size + 1).integers(len(free))])}
     dense = "" if density == 0.2 else f"{round(100 * density)} % "
     return goal_cases(f"random {size}² {dense}", occupied, goals)
+
+
+def open_cases(size: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """Open ground (``OPEN``) and its goals: a corner, the centre, a random cell."""
+    goals = {"corner": (0, 0), "centre": (size // 2, size // 2),
+             "random": tuple(int(v) for v in np.random.default_rng(size + 1).integers(size, size=2))}
+    return goal_cases(f"open {size}² ", np.zeros((size, size), bool), goals)
 
 
 def goal_cases(prefix: str, occupied: np.ndarray, goals: dict[str, tuple[int, int]]
@@ -558,14 +569,15 @@ def main() -> None:
                         help="only the cases whose name holds one of these (no doors; saved as convergence-only)")
     args = parser.parse_args()
     if args.quick:
-        sizes, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
-            QUICK_SIZES, QUICK_DENSE, QUICK_MAZES, QUICK_SERPENTINES, QUICK_RINGS, QUICK_CAVES, QUICK_HALLS, QUICK_MAPS,
-            QUICK_STENCIL_MAPS)
+        sizes, opens, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
+            QUICK_SIZES, QUICK_OPEN, QUICK_DENSE, QUICK_MAZES, QUICK_SERPENTINES, QUICK_RINGS, QUICK_CAVES, QUICK_HALLS,
+            QUICK_MAPS, QUICK_STENCIL_MAPS)
     else:
-        sizes, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
-            SIZES, DENSE, MAZES, SERPENTINES, RINGS, CAVES, HALLS, MAPS, STENCIL_MAPS)
+        sizes, opens, dense, mazes, serpentines, ring_sides, cave_sides, halls, maps, stencil_maps = (
+            SIZES, OPEN, DENSE, MAZES, SERPENTINES, RINGS, CAVES, HALLS, MAPS, STENCIL_MAPS)
     repeats = 3 if args.quick else args.repeats
     cases = [case for size in sizes for case in random_cases(size)]
+    cases += [case for size in opens for case in open_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
     cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
     cases += [case for size in serpentines for case in serpentine_cases(size)]
