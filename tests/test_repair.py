@@ -457,6 +457,16 @@ def mend_runs(monkeypatch, engine: Engine) -> list[np.ndarray]:
     return runs
 
 
+def recorded_on_a_random_map(monkeypatch, seed: int, side: int, density: float, goal) -> tuple:
+    """A random square map (``density`` obstacles, seeded) with ``goal`` freed, an engine converged on it, and its
+    mends recorded from now on (``mend_runs``): (the map, the engine, the launches)."""
+    occupied = np.random.default_rng(seed).random((side, side)) < density
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    return occupied, engine, mend_runs(monkeypatch, engine)
+
+
 def test_an_edit_with_more_sides_than_the_look_follows_is_raised_and_mended_exactly():
     """An edit of thousands of scattered cells has more free cells beside them than a mend's first look follows
     (CUT_PARTS): the look is skipped, and the raise, the race and the lowering alone repair to a fresh converge's
@@ -589,13 +599,8 @@ def test_a_goal_sealed_in_a_room_the_look_cannot_follow_restarts_without_a_raise
     ring's sides apart, and where the mend used to raise the cells outside beside its race, the outline of the
     goal's part - a few hundred cracks along the ring's inner side - bounds it by the room's cells, so few that a
     restart costs less: the mend gives up before its raise, and the repair equals a fresh converge."""
-    rng = np.random.default_rng(31)
-    occupied = rng.random((200, 200)) < 0.15
     goal = (100, 100)
-    occupied[goal] = False
-    engine = Engine(occupied, goal)
-    engine.converge()
-    runs = mend_runs(monkeypatch, engine)
+    occupied, engine, runs = recorded_on_a_random_map(monkeypatch, 31, 200, 0.15, goal)
     ring = ring_round(occupied, goal, 45)
     engine.set_cells(ring, np.ones(len(ring), bool))
     engine.converge()
@@ -667,13 +672,8 @@ def test_a_look_at_boxes_far_apart_ends_once_each_box_is_joined_round_and_a_thic
     too, each of its cells with free cells on one side only: its two sides are apart, and the race that follows
     restarts on the pocket. Both repairs equal a fresh converge."""
     look_unhurried(monkeypatch)
-    rng = np.random.default_rng(22)
-    occupied = rng.random((120, 120)) < 0.05
     goal = (60, 60)
-    occupied[goal] = False
-    engine = Engine(occupied, goal)
-    engine.converge()
-    runs = mend_runs(monkeypatch, engine)
+    occupied, engine, runs = recorded_on_a_random_map(monkeypatch, 22, 120, 0.05, goal)
     boxes = np.array([(r + i, c + j) for r, c in ((20, 20), (20, 95), (95, 30), (90, 90), (60, 20), (30, 60))
                       for i in (-1, 0, 1) for j in (-1, 0, 1)])
     boxes = boxes[~occupied[boxes[:, 0], boxes[:, 1]]]
