@@ -386,8 +386,8 @@ class _MendResult(NamedTuple):
     look and raise passed the budget), the cells its lowering took - having given up, its race's search took in
     all (the buckets and the frontier then the race's) -, whether its race started from the cells the edits left
     as they were (``seed_bound``: the spare buffer then holds them), and the most cells the source's part can hold
-    by its outline, where the look stopped short and the outline closed within the mend's budget (-1: none;
-    ``_cut_rules``' ``outlined``)."""
+    by its outline, where the look stopped short and the outline closed within 1 / OUTLINE_SHARE of a restart's price
+    (-1: none; ``_cut_rules``' ``outlined``)."""
 
     buckets: int
     frontier: int
