@@ -2856,7 +2856,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             race[_LEAD] = _race_lead(least, 0, budget, run[_MEND.lead])
             look = cut_start(values, pen, header, trail, cells, penalties, cap)
             looked, rising, left = ti.Vector([0, 0, 0]), ti.Vector([0, 0, 0, 0, 0]), race
-            phase, raising, gave_up, spent, bound = _LOOKING, False, 0, 0, -1
+            phase, raising, gave_up, spent, outline = _LOOKING, False, 0, 0, -1
             while phase != _RAISE_OVER:  # the look, then the raise, the race going on beside them in one place
                 most, seeding = -1, False
                 spent = _mend_work(looked[1], rising[_RAISED])  # the look's cells once it ended, the raise's
@@ -2865,17 +2865,18 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     most, seeding = racing.paced(race, look[_LOOKED] - look[_DROPPED])
                 elif phase == _LOOKING:
                     looked = cut_verdict(values, pen, trail, cells, penalties, cap, look)
-                    # stopped short, and the cells the source keeps (``kept``) are few enough that a restart may yet
-                    # cost less: the most its part holds, by its outline
-                    if looked[2] == 1 and looked[0] < 0 and _doomed(kept, restart, fills):
-                        bound = outlined(pen, header, restart // OUTLINE_SHARE)
-                    most_reached = ti.select(looked[0] >= 0, looked[0], bound)
+                    stopped_short = looked[2] == 1 and looked[0] < 0  # parts apart, the source's reach not counted
+                    # and the cells the source keeps (``kept``) few enough that a restart may yet cost less: the most
+                    # its part holds, by its outline
+                    if stopped_short and _doomed(kept, restart, fills):
+                        outline = outlined(pen, header, restart // OUTLINE_SHARE)
+                    most_reached = ti.select(looked[0] >= 0, looked[0], outline)
                     raising = not (_doomed(most_reached, restart, fills) or racing.over(spare, race))
                     if raising:
                         budget = _budget_for(budget, restart, fills, most_reached)
                         # the edits cut nothing apart: the source keeps what it had, a restart costs as much
                         race[_LEAD] = 0
-                        if looked[2] == 1 and looked[0] < 0:
+                        if stopped_short:
                             race[_LEAD] = _race_lead(least, looked[1], budget, run[_MEND.lead])
                             race[_HEAD] = ti.select(race[_LEAD] > 0 and bound < 0,
                                                     _race_head(kept, run[_MEND.head]), 0)
@@ -2897,7 +2898,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
             run[_MENDED.raised], run[_MENDED.reached], run[_MENDED.spent] = raised, reached, spent
             run[_MENDED.raced], run[_MENDED.head] = left[_TAKEN], left[_HEAD]
             run[_MENDED.seeded] = ti.select(left[_FROM] == _SEEDED, 1, 0)
-            run[_MENDED.gave_up], run[_MENDED.outlined] = gave_up, bound
+            run[_MENDED.gave_up], run[_MENDED.outlined] = gave_up, outline
             if gave_up:  # the race ran to its end: the restart, its log the search's from now on
                 racing.hand_log(race_links, race, links, heads)
                 hand_over(spare, stamps, keys, race_links, run[_MEND.restart_tick], True)
