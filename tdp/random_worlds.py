@@ -20,7 +20,8 @@ Each family stresses one thing the planner must get right (sizes in cells scale 
   back), and may cross each other's ways.
 
 ``make_world(family, size, seed)`` is deterministic: the same arguments give the same :class:`~tdp.world.Scenario`.
-``maze(size, corridor, seed)`` draws a perfect maze's occupancy, a static map for benchmarks and tests.
+``maze(size, corridor, seed, loops)`` draws a perfect (or, with ``loops``, braided) maze's occupancy, a static map for
+benchmarks and tests.
 """
 from __future__ import annotations
 
@@ -85,25 +86,32 @@ def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
     raise RuntimeError(f"no valid {family} world of size {size} from seed {seed} in 100 draws")
 
 
-def maze(size: int, corridor: int = 1, seed: int = 0) -> np.ndarray:
+def maze(size: int, corridor: int = 1, seed: int = 0, loops: float = 0.0) -> np.ndarray:
     """A perfect maze (one way between any two places) as a bool (size, size) occupancy map, True = wall: a
     recursive backtracker over a lattice of rooms ``corridor`` cells wide, walls 1 cell thick, the map's border a
     wall. The worst case for a converge in rounds of tiles: a tile holds pieces of corridors at very different
-    distances from a goal (a 1-cell maze of side 512 has routes of 26,000+ cells).
+    distances from a goal (a 1-cell maze of side 512 has routes of 26,000+ cells). With ``loops`` > 0, a braided
+    maze: that share of the walls the backtracker left between neighbouring rooms (a perfect maze of n x n rooms
+    leaves (n - 1)² of them) is knocked through at random afterwards, each one a loop - a blocked corridor then has a
+    way round, as in a building's corridors or a game's braided mazes.
 
     Raises:
-        ValueError: ``size`` less than ``corridor + 2``, ``corridor`` less than 1, or ``seed`` not an integer >= 0.
+        ValueError: ``size`` less than ``corridor + 2``, ``corridor`` less than 1, ``seed`` not an integer >= 0, or
+            ``loops`` not a number in [0, 1].
 
     Examples:
         >>> occupied = maze(9, corridor=1, seed=0)
         >>> occupied.shape, bool(occupied[0].all()), bool(occupied[1, 1])
         ((9, 9), True, False)
+        >>> int((~maze(41, seed=0, loops=1.0)).sum() - (~occupied).sum() > 0)
+        1
     """
     if not isinstance(corridor, (int, np.integer)) or corridor < 1:
         raise ValueError(f"corridor must be an int of at least 1 cell, got {corridor!r}")
     if not isinstance(size, (int, np.integer)) or size < corridor + 2:
         raise ValueError(f"size must be an int of at least corridor + 2 = {corridor + 2} cells, got {size!r}")
     seed = checks.integer(seed, "seed", 0)
+    loops = checks.number(loops, "loops", 0.0, high=1.0)
     pitch = corridor + 1
     rooms = (size - 1) // pitch
     occupied = np.ones((size, size), bool)
@@ -131,6 +139,11 @@ def maze(size: int, corridor: int = 1, seed: int = 0) -> np.ndarray:
         seen[nr, nc] = True
         open_between(r, c, nr, nc)
         stack.append((nr, nc))
+    standing = [(r, c, r + dr, c + dc) for r in range(rooms) for c in range(rooms) for dr, dc in ((1, 0), (0, 1))
+                if r + dr < rooms and c + dc < rooms
+                and occupied[1 + r * pitch + dr * corridor, 1 + c * pitch + dc * corridor]]
+    for k in rng.permutation(len(standing))[:round(loops * len(standing))]:
+        open_between(*standing[k])
     return occupied
 
 

@@ -133,8 +133,28 @@ def test_maze_is_a_perfect_maze_of_the_corridor_width():
     assert not wide[1:4, 1:4].any() and np.array_equal(maze(41, 3, seed=3), wide)
 
 
+@pytest.mark.parametrize("loops", [0.1, 0.5, 1.0])
+def test_a_braided_maze_has_a_loop_for_each_wall_knocked_through(loops):
+    """``loops``: that share of the (n - 1)² walls a perfect maze of n x n rooms leaves between neighbours is knocked
+    through, each an independent cycle of the corridors' graph (its edges less its cells plus one, a tree's 0); the
+    maze stays connected and its border a wall, and a maze with no loops is the perfect one."""
+    rooms = (41 - 1) // 2
+    braided = maze(41, 1, seed=3, loops=loops)
+    free = ~braided
+    assert braided[0].all() and braided[-1].all() and braided[:, 0].all() and braided[:, -1].all()
+    edges = (free[1:, :] & free[:-1, :]).sum() + (free[:, 1:] & free[:, :-1]).sum()
+    assert edges - free.sum() + 1 == round(loops * (rooms - 1) ** 2)
+    assert np.isfinite(distances_to(braided, (1, 1), 4, False)[free]).all()
+    assert np.array_equal(maze(41, 1, seed=3, loops=0.0), maze(41, 1, seed=3))
+    assert not (braided & ~maze(41, 1, seed=3)).any()  # walls knocked through, none added
+    assert (~maze(41, 3, seed=3, loops=loops)).sum() > (~maze(41, 3, seed=3)).sum()
+
+
 @pytest.mark.parametrize("kwargs, message", [(dict(size=2), "size"), (dict(size=10, corridor=0), "corridor"),
-                                             (dict(size=4, corridor=3), "size"), (dict(size=9.5), "size")])
+                                             (dict(size=4, corridor=3), "size"), (dict(size=9.5), "size"),
+                                             (dict(size=9, loops=-0.1), "loops"), (dict(size=9, loops=1.5), "loops"),
+                                             (dict(size=9, loops=float("nan")), "loops"),
+                                             (dict(size=9, loops="some"), "loops")])
 def test_maze_rejects_bad_arguments(kwargs, message):
     with pytest.raises(ValueError, match=message):
         maze(**kwargs)
