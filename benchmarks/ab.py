@@ -7,12 +7,12 @@ a plain run times an uncommitted change against the last commit). A revision's `
 archive``), and each version is loaded as a package of its own, so that both run in one process on one Taichi runtime.
 Each pass times both, one after the other, the first swapped every pass: a from-scratch converge (``reset()``, then
 ``converge()``), and ``converge()`` after a 3 x 3 box, a wall of 16 cells on the route, a ring that seals the goal in
-a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze,
-serpentine, ring and ROS maps. Per case: each version's median and the median of the passes' ratios AFTER / BEFORE (a
-pass of both takes milliseconds to a fraction of a second, so the VM's drift reaches both alike); per kind the
-geometric mean. Both versions' fields are checked equal before the timing starts. With ``--costs``, every map
-carries a cost grid of that kind (``benchmarks.costs.edited_costs``: nav2's inflation shape or uniform 1-10; 1 on
-obstacles), so that a change to the weighted layers' kernels is timed where robots meet it
+a room, noise and boxes (``benchmarks.convergence.repair_edit``), and after each edit's undo, on random, dense, maze
+(perfect and braided), serpentine, ring and ROS maps. Per case: each version's median and the median of the passes'
+ratios AFTER / BEFORE (a pass of both takes milliseconds to a fraction of a second, so the VM's drift reaches both
+alike); per kind the geometric mean. Both versions' fields are checked equal before the timing starts. With
+``--costs``, every map carries a cost grid of that kind (``benchmarks.costs.edited_costs``: nav2's inflation shape
+or uniform 1-10; 1 on obstacles), so that a change to the weighted layers' kernels is timed where robots meet it
 (results/ab-costs-KIND.json).
 
 Why one process, pass by pass: this VM's speed drifts between processes by 10-20 % for the same code, and within a
@@ -53,6 +53,7 @@ MAPS = [(convergence.random_cases, (256,), ("random 256² corner", "random 256²
         (convergence.random_cases, (512, 0.4), ("random 512² 40 % centre",)),
         (convergence.maze_cases, (512, 1), ("maze 512² 1-cell corner",)),
         (convergence.maze_cases, (512, 2), ("maze 512² 2-cell random",)),
+        (convergence.maze_cases, (512, 1, 0.1), ("maze 512² 1-cell braided 10 % random",)),
         (convergence.serpentine_cases, (512,), ("serpentine 512² centre",)),
         (convergence.rings_cases, (512,), ("rings 512² centre",)),
         (convergence.ros_cases, (), ("turtlebot3_world #0", "nav2 depot #0"))]

@@ -5,7 +5,8 @@
 Maps: random (20 % obstacles) from 128² to 2048², with 30 % obstacles at 512² and 1024² and 40 % at 512², each with
 goals at a corner, the centre and a random cell; open ground of side 1024 (no obstacle: ``open_cases``), goals the
 same; perfect mazes of side 512 with corridors 1, 2 and 4 cells wide
-(``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, and serpentines of side 256 and 512 (one corridor a
+(``tdp.random_worlds.maze``) and of side 256 with 1-cell corridors, braided mazes (1-cell corridors, a tenth of the
+walls between rooms knocked through: loops) of side 256 and 512, and serpentines of side 256 and 512 (one corridor a
 cell wide winding row by row: ``serpentine``) and rings of side 256 and 512 (concentric corridors a cell wide, a door in
 each wall between two: ``rings``), goals at a corner, the centre and a random free cell; caves of side 512 and 1024 (a
 cellular automaton's winding passages: ``caves``), goals in their largest region; halls of 4096 x 64 and 64 x 4096 cells
@@ -70,8 +71,11 @@ SIZES, QUICK_SIZES = [128, 192, 256, 512, 1024, 2048], [64, 128]
 OPEN, QUICK_OPEN = [1024], [64]
 #: Dense random maps as well: (side, obstacle density); routes wind far more than at 20 %.
 DENSE, QUICK_DENSE = [(512, 0.3), (1024, 0.3), (512, 0.4)], [(64, 0.3)]
-#: Perfect mazes: (side, corridor width); a tile holds pieces of corridors at very different distances.
-MAZES, QUICK_MAZES = [(256, 1), (512, 1), (512, 2), (512, 4)], [(64, 1)]
+#: Mazes: (side, corridor width, loops); a tile holds pieces of corridors at very different distances. Perfect mazes
+#: (no loop: a tree, where a blocked corridor cuts off all beyond it) and braided ones (``maze``'s ``loops``: a tenth
+#: of the walls a perfect maze leaves between rooms knocked through, so that a blocked corridor has a way round).
+MAZES = [(256, 1, 0.0), (512, 1, 0.0), (512, 2, 0.0), (512, 4, 0.0), (256, 1, 0.1), (512, 1, 0.1)]
+QUICK_MAZES = [(64, 1, 0.0), (64, 1, 0.1)]
 #: Serpentines (side): one corridor a cell wide winding row by row, a search's frontier one cell all the way - where
 #: Dijkstra's heap is at its cheapest and each cell has two edges against our stencil's 16 moves.
 SERPENTINES, QUICK_SERPENTINES = [256, 512], [64]
@@ -167,10 +171,11 @@ def hall_cases(rows: int, cols: int) -> list[tuple[str, np.ndarray, tuple[int, i
     return goal_cases(f"hall {rows}x{cols} ", occupied, goals)
 
 
-def maze_cases(size: int, corridor: int) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
-    """A perfect maze and its goals (``walled_goals``: the corner room first)."""
-    occupied = maze(size, corridor, seed=size + corridor)
-    return goal_cases(f"maze {size}² {corridor}-cell ", occupied, walled_goals(occupied))
+def maze_cases(size: int, corridor: int, loops: float = 0.0) -> list[tuple[str, np.ndarray, tuple[int, int]]]:
+    """A maze (perfect, or braided with ``loops``) and its goals (``walled_goals``: the corner room first)."""
+    occupied = maze(size, corridor, seed=size + corridor, loops=loops)
+    braided = f"braided {round(100 * loops)} % " if loops else ""
+    return goal_cases(f"maze {size}² {corridor}-cell {braided}", occupied, walled_goals(occupied))
 
 
 def walled_goals(occupied: np.ndarray) -> dict[str, tuple[int, int]]:
@@ -579,7 +584,7 @@ def main() -> None:
     cases = [case for size in sizes for case in random_cases(size)]
     cases += [case for size in opens for case in open_cases(size)]
     cases += [case for size, density in dense for case in random_cases(size, density)]
-    cases += [case for size, corridor in mazes for case in maze_cases(size, corridor)]
+    cases += [case for size, corridor, loops in mazes for case in maze_cases(size, corridor, loops)]
     cases += [case for size in serpentines for case in serpentine_cases(size)]
     cases += [case for size in ring_sides for case in rings_cases(size)]
     cases += [case for size in cave_sides for case in caves_cases(size)]
