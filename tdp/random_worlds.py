@@ -60,6 +60,15 @@ WANDER_TRIES = 20
 CUTTING = ("rooms", "corridor", "clearing")
 
 
+def _map_side(size, least: int) -> int:
+    """``size`` as a map's side in cells, an integer from ``least`` to the engine's largest map side (MAX_MAP_SIDE:
+    past it numpy's own error, in a world's draw read as "no valid world" after 100 draws, or a MemoryError)."""
+    size = checks.integer(size, "size", least)
+    if size > MAX_MAP_SIDE:
+        raise ValueError(f"size must be at most {MAX_MAP_SIDE} cells (the engine's largest map), got {size}")
+    return size
+
+
 def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
     """A random world of ``family`` on a ``size`` x ``size`` map, from ``seed``; ``max_ticks`` is 6 x size.
 
@@ -69,9 +78,7 @@ def make_world(family: str, size: int = 100, seed: int = 0) -> Scenario:
     """
     if family not in FAMILIES:
         raise ValueError(f"unknown world family {family!r}; choose one of {', '.join(FAMILIES)}")
-    size, seed = checks.integer(size, "size", 60), checks.integer(seed, "seed", 0)
-    if size > MAX_MAP_SIDE:  # numpy's own error inside a draw read as "no valid world", after 100 draws
-        raise ValueError(f"size must be at most {MAX_MAP_SIDE} cells (the engine's largest map), got {size}")
+    size, seed = _map_side(size, 60), checks.integer(seed, "seed", 0)
     rng = np.random.default_rng([FAMILIES.index(family), size, seed])
     for _ in range(100):
         try:
@@ -96,8 +103,9 @@ def maze(size: int, corridor: int = 1, seed: int = 0, loops: float = 0.0) -> np.
     way round, as in a building's corridors or a game's braided mazes.
 
     Raises:
-        ValueError: ``size`` less than ``corridor + 2``, ``corridor`` less than 1, ``seed`` not an integer >= 0, or
-            ``loops`` not a number in [0, 1].
+        ValueError: ``size`` not an integer from ``corridor + 2`` to the engine's largest map side
+            (``MAX_MAP_SIDE``), ``corridor`` less than 1, ``seed`` not an integer >= 0, or ``loops`` not a number in
+            [0, 1].
 
     Examples:
         >>> occupied = maze(9, corridor=1, seed=0)
@@ -108,9 +116,7 @@ def maze(size: int, corridor: int = 1, seed: int = 0, loops: float = 0.0) -> np.
     """
     if not isinstance(corridor, (int, np.integer)) or corridor < 1:
         raise ValueError(f"corridor must be an int of at least 1 cell, got {corridor!r}")
-    if not isinstance(size, (int, np.integer)) or size < corridor + 2:
-        raise ValueError(f"size must be an int of at least corridor + 2 = {corridor + 2} cells, got {size!r}")
-    seed = checks.integer(seed, "seed", 0)
+    size, seed = _map_side(size, corridor + 2), checks.integer(seed, "seed", 0)
     loops = checks.number(loops, "loops", 0.0, high=1.0)
     pitch = corridor + 1
     rooms = (size - 1) // pitch
@@ -487,15 +493,17 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     5,013), and the default limit ran out on the way.
 
     Raises:
-        ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` or
-            ``seed`` not an integer >= 0, ``blockage`` not a bool.
+        ValueError: ``grid`` not a GridMap, start or goal not a free cell, no way between them, ``boxes`` not an
+            integer from 0 to the map's free cells, ``seed`` not an integer >= 0, ``blockage`` not a bool.
 
     Warns:
         UserWarning: fewer boxes fit on the map than ``boxes`` (a maze or 1-cell corridors have room for none).
     """
     if not isinstance(grid, GridMap):
         raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
-    boxes, seed = checks.integer(boxes, "boxes", 0), checks.integer(seed, "seed", 0)
+    # each box is drawn a hundred times at most: more boxes than free cells would draw for ever
+    boxes = checks.integer(boxes, "boxes", 0, int(np.count_nonzero(~grid.occupied)))
+    seed = checks.integer(seed, "seed", 0)
     blockage = checks.flag(blockage, "blockage")
     rng = np.random.default_rng([_QUICK_STREAM, boxes, seed])
     start, goal = grid.check_free_cell(start, "start"), grid.check_free_cell(goal, "goal")

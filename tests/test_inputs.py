@@ -478,14 +478,16 @@ def test_a_quick_world_on_a_maze_gives_the_robot_ticks_for_its_route():
 
 def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     """The same fuzz, on the world's side: boxes_on_map truncated boxes=2.5 to 2 and died on a list or infinity
-    (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError); a scenario's occupancy, target,
+    (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError), and drew for ever where more
+    boxes were asked for than the map has free cells (a hundred draws a box); a scenario's occupancy, target,
     holds and a box's footprint at a tick that is not a number ended in a TypeError; maze took a NaN seed to
     numpy; nav2's inflation with a steep factor warned of overflow from numpy, its result right."""
     from tdp.random_worlds import boxes_on_map, maze
 
     for boxes, seed, message in ((2.5, 0, "boxes must be an integer, got 2.5"), ([1], 0, "boxes must be an integer"),
                                  (1, math.inf, "seed must be an integer, got inf"),
-                                 (-1, 0, "boxes must be an integer >= 0")):
+                                 (-1, 0, "boxes must be an integer >= 0"),
+                                 (10**12, 0, "boxes must be an integer <= 100, got 1000000000000")):
         with pytest.raises(ValueError, match=re.escape(message)):
             boxes_on_map(GRID, (0, 0), (9, 9), boxes, seed)
     with pytest.raises(ValueError, match="grid must be a tdp.GridMap, got ndarray"):
