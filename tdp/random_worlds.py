@@ -545,7 +545,8 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
 
 def _plug_on_route(grid: GridMap, route: list[tuple[int, int]]) -> tuple[Obstacle, int]:
     """A box filling the narrowest free run across the route between a third and two thirds of the way that leaves
-    another way to the goal, appearing when the robot is about a third of the way along; (box, tick)."""
+    the start and the goal free and another way between them, appearing when the robot is about a third of the way
+    along; (box, tick)."""
     candidates = []
     for r, c in route[len(route) // 3:2 * len(route) // 3]:
         for vertical in (True, False):
@@ -561,6 +562,8 @@ def _plug_on_route(grid: GridMap, route: list[tuple[int, int]]) -> tuple[Obstacl
     for _, box in sorted(set(candidates)):
         plugged = grid.occupied.copy()
         plugged[max(box[0], 0):box[2], max(box[1], 0):box[3]] = True
+        if plugged[route[0]] or plugged[route[-1]]:  # a short route's middle third lies a cell from its ends
+            continue
         if _route(plugged, route[0], route[-1]):
             tick = max(1, len(route) // 3 - 10)
             return Obstacle(box=box, appear_at=tick), tick

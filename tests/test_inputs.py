@@ -478,8 +478,9 @@ def test_a_quick_world_on_a_maze_gives_the_robot_ticks_for_its_route():
 
 def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     """The same fuzz, on the world's side: boxes_on_map truncated boxes=2.5 to 2 and died on a list or infinity
-    (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError), and drew for ever where more
-    boxes were asked for than the map has free cells (a hundred draws a box); a scenario's occupancy, target,
+    (TypeError, OverflowError) or on a grid that is not a GridMap (AttributeError), drew for ever where more boxes
+    were asked for than the map has free cells (a hundred draws a box), and put a blockage's plug over the start of a
+    short route (a ValueError saying the start was on an obstacle); a scenario's occupancy, target,
     holds and a box's footprint at a tick that is not a number ended in a TypeError; maze took a NaN seed to
     numpy; nav2's inflation with a steep factor warned of overflow from numpy, its result right."""
     from tdp.random_worlds import boxes_on_map, maze
@@ -494,6 +495,13 @@ def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
         boxes_on_map(np.zeros((10, 10), bool), (0, 0), (9, 9))
     with pytest.raises(ValueError, match="blockage must be"):
         boxes_on_map(GRID, (0, 0), (9, 9), blockage="yes")
+    two_corridors = np.ones((5, 20), bool)  # rows 1 and 3, joined at both ends
+    two_corridors[[1, 3], 1:19] = False
+    two_corridors[1:4, [1, 18]] = False
+    with pytest.raises(ValueError, match="no narrow place on the route"):  # not "start (1, 5) is on an obstacle"
+        boxes_on_map(tdp.GridMap(two_corridors), (1, 5), (1, 7), 0, blockage=True)  # the only narrow run covers the start
+    plug = boxes_on_map(tdp.GridMap(two_corridors), (1, 3), (1, 15), 0, blockage=True).obstacles[-1].box
+    assert plug[0] <= 1 < plug[2] and not plug[1] <= 3 < plug[3] and not plug[1] <= 15 < plug[3]
     box = tdp.Obstacle(box=(4, 4, 6, 6), waypoints=[(4, 1)], speed=0.5)
     world = tdp.Scenario(GRID, (0, 0), (9, 9), obstacles=[box])
     for call in (lambda: world.occupancy(math.nan), lambda: world.target([1]), lambda: world.holds((1, 2), (4, 4)),
