@@ -498,8 +498,8 @@ def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     two_corridors = np.ones((5, 20), bool)  # rows 1 and 3, joined at both ends
     two_corridors[[1, 3], 1:19] = False
     two_corridors[1:4, [1, 18]] = False
-    with pytest.raises(ValueError, match="no narrow place on the route"):  # not "start (1, 5) is on an obstacle"
-        boxes_on_map(tdp.GridMap(two_corridors), (1, 5), (1, 7), 0, blockage=True)  # the only narrow run covers the start
+    with pytest.raises(ValueError, match="no narrow place on the route"):  # the only narrow run covers the start:
+        boxes_on_map(tdp.GridMap(two_corridors), (1, 5), (1, 7), 0, blockage=True)  # not "start ... on an obstacle"
     plug = boxes_on_map(tdp.GridMap(two_corridors), (1, 3), (1, 15), 0, blockage=True).obstacles[-1].box
     assert plug[0] <= 1 < plug[2] and not plug[1] <= 3 < plug[3] and not plug[1] <= 15 < plug[3]
     box = tdp.Obstacle(box=(4, 4, 6, 6), waypoints=[(4, 1)], speed=0.5)
