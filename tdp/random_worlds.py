@@ -501,9 +501,10 @@ def boxes_on_map(grid: GridMap, start: tuple[int, int], goal: tuple[int, int], b
     """
     if not isinstance(grid, GridMap):
         raise ValueError(f"grid must be a tdp.GridMap, got {type(grid).__name__}")
-    # each box is drawn a hundred times at most: more boxes than free cells would draw for ever
-    boxes = checks.integer(boxes, "boxes", 0, int(np.count_nonzero(~grid.occupied)))
-    seed = checks.integer(seed, "seed", 0)
+    boxes, seed = checks.integer(boxes, "boxes", 0), checks.integer(seed, "seed", 0)
+    free_cells = int(np.count_nonzero(~grid.occupied))
+    if boxes > free_cells:  # each box is drawn a hundred times at most: so many would draw for ever
+        raise ValueError(f"boxes must be at most the map's {free_cells} free cells, got {boxes}")
     blockage = checks.flag(blockage, "blockage")
     rng = np.random.default_rng([_QUICK_STREAM, boxes, seed])
     start, goal = grid.check_free_cell(start, "start"), grid.check_free_cell(goal, "goal")

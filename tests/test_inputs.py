@@ -488,7 +488,7 @@ def test_world_building_calls_refuse_what_is_not_a_tick_a_count_or_a_map():
     for boxes, seed, message in ((2.5, 0, "boxes must be an integer, got 2.5"), ([1], 0, "boxes must be an integer"),
                                  (1, math.inf, "seed must be an integer, got inf"),
                                  (-1, 0, "boxes must be an integer >= 0"),
-                                 (10**12, 0, "boxes must be an integer <= 100, got 1000000000000")):
+                                 (10**12, 0, "boxes must be at most the map's 100 free cells, got 1000000000000")):
         with pytest.raises(ValueError, match=re.escape(message)):
             boxes_on_map(GRID, (0, 0), (9, 9), boxes, seed)
     with pytest.raises(ValueError, match="grid must be a tdp.GridMap, got ndarray"):
