@@ -153,6 +153,7 @@ def test_a_braided_maze_has_a_loop_for_each_wall_knocked_through(loops):
 @pytest.mark.parametrize("kwargs, message", [(dict(size=2), "size"), (dict(size=10, corridor=0), "corridor"),
                                              (dict(size=4, corridor=3), "size"), (dict(size=9.5), "size"),
                                              (dict(size=2**31), "size must be at most 32764 cells"),
+                                             (dict(size=9, corridor=True), "corridor must be an integer"),
                                              (dict(size=9, loops=-0.1), "loops"), (dict(size=9, loops=1.5), "loops"),
                                              (dict(size=9, loops=float("nan")), "loops"),
                                              (dict(size=9, loops="some"), "loops")])
