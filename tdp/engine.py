@@ -209,12 +209,18 @@ CUT_SHARE = 0.5
 #: boxes there 0.67-0.70x; checked from the look's start (no such floor), a pocket sealed 1.11-1.51x on random maps.
 PAUSE_AFTER = 8
 #: Where the look stops short with parts apart, the outline of the source's part (``_cut_rules``' ``outlined``) is
-#: followed for at most 1 / OUTLINE_SHARE of a restart's price in cracks. On a maze a crack costs about a quarter of a
-#: cell a search takes (a turn every few cracks: 52,000 cracks added 0.8 ms to a box's 2.4 ms repair on the 1-cell
-#: maze 512²), so an outline that does not close in time - a maze's or a dense map's, as long as the cells it encloses
-#: - costs a mend about 1 % of a restart, where one followed as far as the mend's budget made boxes and walls on mazes
-#: 1.2-1.7x dearer (``benchmarks.ab``); a goal sealed in a ring has an outline of a few thousand cracks.
-OUTLINE_SHARE = 32
+#: followed for at most 1 / OUTLINE_SHARE of a restart's price in cracks (``outline_cracks``). On a maze a crack costs
+#: about a quarter of a cell a search takes (a turn every few cracks: 52,000 cracks added 0.8 ms to a box's 2.4 ms
+#: repair on the 1-cell maze 512²); a goal sealed in a room has an outline of a few thousand cracks, and where the room
+#: lies at the end of a walk past islands (a wide hall: 6,200 cracks) or winds round every obstacle touching its
+#: ring (40 % obstacles: 7,700), at most 1/32 of a restart left the raise to run beside the race (1.7-1.9x a fresh
+#: converge, against 1.3-1.45x found: RESULTS §2). An outline that does not close costs a mend at most about 3 % of a
+#: restart; followed as far as the mend's budget it made boxes and walls on mazes 1.2-1.7x dearer (``benchmarks.ab``).
+OUTLINE_SHARE = 8
+#: The same on maps of corridors a cell wide (``depth_first_raise``), whose outlines run along both sides of every
+#: corridor of their part - two cracks a cell -, so that one closes in time only round a part the race takes at once:
+#: 1/8 of a restart there made boxes on the 1-cell mazes 1.07x dearer and walls 1.04x (``benchmarks.ab``), for nothing.
+CORRIDOR_OUTLINE_SHARE = 32
 _APART_SIDE = CUT_PARTS  # no part's index: a cluster's open sides in two parts or more (``_cut_rules``)
 #: The flags of a part of ``cut_off``: it holds the source; it ran dry (closed); its clusters' sides are all one part
 #: (paused: its cells are dropped, not looked at); it dropped cells (truncated: it never reads as closed).
@@ -386,8 +392,8 @@ class _MendResult(NamedTuple):
     look and raise passed the budget), the cells its lowering took - having given up, its race's search took in
     all (the buckets and the frontier then the race's) -, whether its race started from the cells the edits left
     as they were (``seed_bound``: the spare buffer then holds them), and the most cells the source's part can hold
-    by its outline, where the look stopped short and the outline closed within 1 / OUTLINE_SHARE of a restart's price
-    (-1: none; ``_cut_rules``' ``outlined``)."""
+    by its outline, where the look stopped short and the outline closed within ``outline_cracks`` (-1: none;
+    ``_cut_rules``' ``outlined``)."""
 
     buckets: int
     frontier: int
@@ -2175,6 +2181,14 @@ def restart_is_cheaper(reached: int, restart: int, fills: int) -> bool:
     return reached >= 0 and RAISE_COST * (restart - fills - reached) > reached + fills
 
 
+def outline_cracks(restart: int, corridors: int) -> int:
+    """The most cracks a mend's outline of the source's part may follow (``_cut_rules``' ``outlined``): 1 /
+    OUTLINE_SHARE of a restart's price ``restart`` (in cells a search takes), 1 / CORRIDOR_OUTLINE_SHARE on maps of
+    corridors a cell wide (``corridors``: ``depth_first_raise``), where an outline takes two cracks a cell of its
+    part. A pure rule, compiled into the mend as ``_outline_cracks``."""
+    return restart // (CORRIDOR_OUTLINE_SHARE if corridors else OUTLINE_SHARE)
+
+
 def race_lead(least: int, looked: int, budget: int, lead: int) -> int:
     """A mend's race's lead (``_race_rules``; ``lead``: RACE_LEAD) once its first look has taken ``looked`` cells
     (none yet, or all, having found the edits' sides apart): none if the least a restart can cost, ``least`` cells a
@@ -2213,6 +2227,7 @@ def logged_cells(step: int) -> int:
 
 _mend_work, _doomed = ti.func(mend_work), ti.func(restart_is_cheaper)
 _race_lead, _race_head = ti.func(race_lead), ti.func(race_head)
+_outline_cracks = ti.func(outline_cracks)
 _seed_bound = ti.func(seed_bound)
 _logged_cells = ti.func(logged_cells)
 (_BUCKET, _LISTED, _TAKEN, _EMPTIED, _LEAD, _FOCUS_ROW, _FOCUS_COL, _LOGGED, _HEAD,
@@ -2869,7 +2884,7 @@ def _search_kernels(kernel, cell: SimpleNamespace, t: _KernelTypes) -> None:
                     # and the cells the source keeps (``kept``) few enough that a restart may yet cost less: the most
                     # its part holds, by its outline
                     if stopped_short and _doomed(kept, restart, fills):
-                        outline = outlined(pen, header, restart // OUTLINE_SHARE)
+                        outline = outlined(pen, header, _outline_cracks(restart, run[_MEND.depth_first]))
                     most_reached = ti.select(looked[0] >= 0, looked[0], outline)
                     raising = not (_doomed(most_reached, restart, fills) or racing.over(spare, race))
                     if raising:

@@ -611,6 +611,28 @@ def test_a_goal_sealed_in_a_room_the_look_cannot_follow_restarts_without_a_raise
     assert_equal_to_a_fresh_converge(engine, {})
 
 
+@pytest.mark.parametrize("shape, density, seed, half", [((24, 1200), 0.2, 5, 150), ((160, 160), 0.4, 3, 30)])
+def test_a_room_whose_outline_is_long_is_still_found_before_the_raise(monkeypatch, shape, density, seed, half):
+    """Rooms whose outline is long against the map: in a wide hall, cut across by a ring (the map's edge closes it),
+    the walk east from the goal passes dozens of islands before the room's side; on a map 40 % blocked, the outline
+    winds round every obstacle touching the ring. Both take more than 1/32 of a restart's price in cracks, where the
+    mend used to raise the cells outside beside its race; within ``outline_cracks`` the mend gives up before the
+    raise, the repair equal to a fresh converge."""
+    occupied = np.random.default_rng(seed).random(shape) < density
+    goal = (shape[0] // 2, shape[1] // 2)
+    occupied[goal] = False
+    engine = Engine(occupied, goal)
+    engine.converge()
+    runs = mend_runs(monkeypatch, engine)
+    ring = ring_round(occupied, goal, half)
+    engine.set_cells(ring, np.ones(len(ring), bool))
+    engine.converge()
+    outcome = engine_module._outcome(engine_module._MendResult, runs[-1])
+    reach = reachable_by_the_stencil(engine.occupied, goal, False)
+    assert outcome.gave_up and outcome.raised == 0 and reach <= outcome.outlined < 2 * reach
+    assert_equal_to_a_fresh_converge(engine, {})
+
+
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(side=st.integers(12, 70), density=st.sampled_from([0.0, 0.1, 0.3, 0.45]), seed=st.integers(0, 10_000),
        neighbourhood=st.sampled_from([4, 8, 16]), half=st.integers(2, 20))
@@ -934,6 +956,14 @@ def test_the_race_restarts_a_goal_sealed_in_while_the_raise_runs_and_keeps_to_it
         engine.set_cells(ring, np.zeros(len(ring), bool))
         engine.converge()
         assert_equal_to_a_fresh_converge(engine, options)
+
+
+def test_an_outline_may_follow_an_eighth_of_a_restart_in_cracks_and_a_thirty_second_on_corridors():
+    """``outline_cracks``: 1/8 of a restart's price (in cells a search takes) in cracks, 1/32 on maps of corridors
+    a cell wide, whose outlines take two cracks a cell of their part."""
+    assert engine_module.outline_cracks(32_000, 0) == 4_000
+    assert engine_module.outline_cracks(32_000, 1) == 1_000
+    assert engine_module.outline_cracks(7, 0) == engine_module.outline_cracks(31, 1) == 0
 
 
 @given(st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**7), st.integers(0, 10**6), st.integers(0, 4))
