@@ -218,8 +218,9 @@ PAUSE_AFTER = 8
 #: restart; followed as far as the mend's budget it made boxes and walls on mazes 1.2-1.7x dearer (``benchmarks.ab``).
 OUTLINE_SHARE = 8
 #: The same on maps of corridors a cell wide (``depth_first_raise``), whose outlines run along both sides of every
-#: corridor of their part - two cracks a cell -, so that one closes in time only round a part the race takes at once:
-#: 1/8 of a restart there made boxes on the 1-cell mazes 1.07x dearer and walls 1.04x (``benchmarks.ab``), for nothing.
+#: corridor of their part - two cracks a cell -, so that 1/8 of a restart would close only round a part of at most a
+#: sixteenth of the map's cells, and it made a box's repair on the 1-cell mazes 1.09x dearer, eight boxes' 1.06x and
+#: a pocket's 1.05x (``benchmarks.ab``, pass by pass), where the outline runs and does not close.
 CORRIDOR_OUTLINE_SHARE = 32
 _APART_SIDE = CUT_PARTS  # no part's index: a cluster's open sides in two parts or more (``_cut_rules``)
 #: The flags of a part of ``cut_off``: it holds the source; it ran dry (closed); its clusters' sides are all one part
